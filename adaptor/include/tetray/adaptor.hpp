@@ -1,0 +1,128 @@
+// tetray's public C++ API: the only door for a solver. Modeled on the Catalyst/Ascent
+// initialize/execute/finalize cycle, but zero-copy: every view below is non-owning and is only
+// read during the call that receives it. No exception crosses this API; every call returns a
+// Status, and the solver decides what to do with it.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace tetray {
+
+enum class StatusCode {
+  ok = 0,
+  invalid_argument,  // bad views: sizes, indices out of range, NaN/Inf under policy "error"
+  config_error,      // the YAML config: file, line and key in the message
+  io_error,          // output directory or image file could not be written
+  mpi_error,
+  internal_error,
+  not_initialized,
+};
+
+struct Status {
+  StatusCode code = StatusCode::ok;
+  std::string message;
+
+  bool ok() const { return code == StatusCode::ok; }
+  static Status success() { return {}; }
+};
+
+enum class ScalarType : std::uint8_t { float32, float64 };
+enum class IndexType : std::uint8_t { int32, int64 };
+
+// Point coordinates, xyz interleaved, float or double; optionally a displacement of the same
+// layout that is added to them (reference coordinates + displacement = current position).
+struct PointsView {
+  const void* xyz = nullptr;
+  ScalarType type = ScalarType::float64;
+  std::size_t count = 0;  // number of points
+  const void* displacement = nullptr;  // optional, same count
+  ScalarType displacement_type = ScalarType::float64;
+
+  static PointsView of(std::span<const double> xyz) { return {xyz.data(), ScalarType::float64, xyz.size() / 3}; }
+  static PointsView of(std::span<const float> xyz) { return {xyz.data(), ScalarType::float32, xyz.size() / 3}; }
+};
+
+// Tet connectivity, 4 point indices per tet, int32 or int64.
+struct TetsView {
+  const void* connectivity = nullptr;
+  IndexType type = IndexType::int64;
+  std::size_t count = 0;  // number of tets
+  // Optional per-tet VTK vtkGhostType flags: tets with DUPLICATECELL (1) or HIDDENCELL (32)
+  // are not rendered.
+  const std::uint8_t* ghost = nullptr;
+  // Optional global tet ids (unique across ranks); they make depth ties resolve identically for
+  // any rank count. Without them, rank-local ids are used.
+  const std::int64_t* global_ids = nullptr;
+
+  static TetsView of(std::span<const std::int64_t> c) { return {c.data(), IndexType::int64, c.size() / 4}; }
+  static TetsView of(std::span<const std::int32_t> c) { return {c.data(), IndexType::int32, c.size() / 4}; }
+};
+
+struct MeshView {
+  PointsView points;
+  TetsView tets;
+};
+
+// One point field by name, one value per point.
+struct FieldView {
+  std::string_view name;
+  const void* values = nullptr;
+  ScalarType type = ScalarType::float64;
+  std::size_t count = 0;
+
+  static FieldView of(std::string_view name, std::span<const double> v) { return {name, v.data(), ScalarType::float64, v.size()}; }
+  static FieldView of(std::string_view name, std::span<const float> v) { return {name, v.data(), ScalarType::float32, v.size()}; }
+};
+
+// What changed since the last execute call. The first call is always treated as a full change.
+struct Changes {
+  bool geometry = true;  // point coordinates or displacement
+  bool topology = true;  // connectivity, tet count, ghost flags
+  bool fields = true;    // field values
+};
+
+// What one execute call did (for the solver's own logging).
+struct ExecuteReport {
+  bool rendered = false;        // false on an off-trigger step
+  int scenes_rendered = 0;
+  double seconds_blocked = 0;   // time execute held the solver
+  std::string bvh_decision;     // "none", "field_refit", "refit", "rebuild"
+  std::uint64_t tets_skipped = 0;  // under the skip_tets NaN/Inf policy
+};
+
+class Adaptor {
+ public:
+  // Reads and validates the whole config at once. `comm` is duplicated; the adaptor never uses
+  // MPI_COMM_WORLD behind the caller's back. On error returns null and fills `status`.
+  static std::unique_ptr<Adaptor> create(MPI_Comm comm, const std::string& config_path,
+                                         Status& status);
+  static std::unique_ptr<Adaptor> create_from_yaml(MPI_Comm comm, std::string_view yaml,
+                                                   Status& status);
+  ~Adaptor();
+  Adaptor(const Adaptor&) = delete;
+  Adaptor& operator=(const Adaptor&) = delete;
+
+  // One solver step. Collective over the adaptor's communicator. Off-trigger steps return at
+  // once. An error in a writer thread from an earlier step is returned here.
+  Status execute(std::int64_t step, double time, const MeshView& mesh,
+                 std::span<const FieldView> fields, const Changes& changes = {},
+                 ExecuteReport* report = nullptr);
+
+  // Drains the writer queue, closes the logs. Collective. Idempotent.
+  Status finalize();
+
+  class Impl;
+
+ private:
+  explicit Adaptor(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tetray

@@ -1,0 +1,58 @@
+// The implicit 4D min/max BVH of seed 000 §5: every node bounds x, y, z and the scalar range
+// of the tets below it, so a subtree whose range misses every isovalue is culled before any
+// geometric test. Children of an inner node are stored next to each other; a leaf holds a
+// contiguous range of TetVolume::tets (the build reorders the tets into leaf order).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/tet_volume.hpp"
+
+namespace tetray::render {
+
+struct Bounds4 {
+  float lo[4];  // x, y, z, f minimum
+  float hi[4];  // x, y, z, f maximum
+};
+
+struct BvhNode {
+  Bounds4 bounds;
+  std::uint32_t first;  // inner: index of the first child (the second is first + 1);
+                        // leaf: index of the first tet
+  std::uint32_t count;  // leaf: number of tets (>= 1); inner: 0
+
+  bool is_leaf() const { return count != 0; }
+};
+
+enum class BvhBuilder { bih, sah };
+
+struct BvhBuildOptions {
+  BvhBuilder builder = BvhBuilder::bih;
+  int leaf_size = 8;  // maximum tets per leaf
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
+  // Subtree roots recorded at build time for parallel refit (seed 000 §6.2), and the nodes
+  // above them in an order where children come before parents.
+  std::vector<std::uint32_t> subtree_roots;
+  std::vector<std::uint32_t> top_nodes_bottom_up;
+  double sah_cost_at_build = 0;  // for the rebuild policy
+
+  bool empty() const { return nodes.empty(); }
+  std::size_t bytes() const { return nodes.capacity() * sizeof(BvhNode); }
+};
+
+// Builds the BVH over volume.tets and reorders volume.tets and volume.tet_ids into leaf order.
+// Parallel with oneTBB within the calling task arena.
+Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options);
+
+// SAH cost of the tree with the node bounds it has now (traversal cost 1, tet cost 1,
+// normalised by the root's surface area): the quality measure of the rebuild policy.
+double sah_cost(const Bvh& bvh);
+
+// 4D bounds of one tet.
+Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet);
+
+}  // namespace tetray::render

@@ -1,0 +1,48 @@
+#include "render/camera.hpp"
+
+#include <algorithm>
+#include <numbers>
+
+namespace tetray::render {
+
+CameraFrame make_frame(const Camera& camera) {
+  CameraFrame frame;
+  frame.eye = camera.eye;
+  frame.forward = normalize(camera.look_at - camera.eye);
+  frame.right = normalize(cross(frame.forward, camera.up));
+  frame.up = cross(frame.right, frame.forward);
+  const double tan_half = std::tan(camera.fov_deg * std::numbers::pi / 360.0);
+  frame.scale_y = tan_half;
+  frame.scale_x = tan_half * static_cast<double>(camera.width) / camera.height;
+  return frame;
+}
+
+Vec3d CameraFrame::direction_at(double px, double py, int width, int height) const {
+  const double ndc_x = (2.0 * px / width - 1.0) * scale_x;
+  const double ndc_y = (1.0 - 2.0 * py / height) * scale_y;
+  return forward + ndc_x * right + ndc_y * up;
+}
+
+Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j) {
+  return normalize(frame.direction_at(i + 0.5, j + 0.5, camera.width, camera.height));
+}
+
+Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,
+                  int height) {
+  const Vec3d center = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * length(hi - lo), 1e-12);
+  const double tan_half = std::tan(fov_deg * std::numbers::pi / 360.0);
+  const double tan_half_min = tan_half * std::min(1.0, static_cast<double>(width) / height);
+  // Distance at which a sphere of that radius fits the narrower half-angle.
+  const double distance = radius / std::sin(std::atan(tan_half_min));
+  Camera camera;
+  camera.look_at = center;
+  camera.eye = center + distance * normalize(from_direction);
+  camera.up = up;
+  camera.fov_deg = fov_deg;
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
+}  // namespace tetray::render

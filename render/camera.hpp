@@ -1,0 +1,46 @@
+// The pinhole camera of DESIGN.md §3. Every part of tetray (tracer, reference intersector,
+// benchmark references, tests) generates its rays here, so all of them agree on a pixel's ray.
+#pragma once
+
+#include "render/vec.hpp"
+
+namespace tetray::render {
+
+struct Camera {
+  Vec3d eye{0, 0, 5};
+  Vec3d look_at{0, 0, 0};
+  Vec3d up{0, 1, 0};
+  double fov_deg = 40.0;
+  int width = 512;
+  int height = 512;
+};
+
+// The orthonormal frame and image-plane scale derived from a Camera.
+struct CameraFrame {
+  Vec3d eye;
+  Vec3d forward, right, up;  // right = forward x up, up = right x forward
+  double scale_x = 0;        // tan(fov/2) * W/H
+  double scale_y = 0;        // tan(fov/2)
+
+  // Unnormalized direction through continuous image coordinates (px, py) in pixels, where the
+  // center of pixel (i, j) is (i + 0.5, j + 0.5). Linear in (px, py): a packet's rays lie in
+  // the convex hull of its corner directions, which frustum culling relies on.
+  Vec3d direction_at(double px, double py, int width, int height) const;
+};
+
+CameraFrame make_frame(const Camera& camera);
+
+// Normalized ray direction through the center of pixel (i, j), in double precision.
+Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j);
+
+// Depth of DESIGN §3: distance along the view axis.
+inline double view_depth(const CameraFrame& frame, Vec3d hit) {
+  return dot(hit - frame.eye, frame.forward);
+}
+
+// A camera that looks at the box [lo, hi] from direction `from_direction` (pointing from the
+// target towards the eye) so that the whole box fits the vertical and horizontal field of view.
+Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,
+                  int height);
+
+}  // namespace tetray::render

@@ -1,0 +1,38 @@
+// RGBA + depth image of DESIGN §3, plus the id of the primitive hit per pixel, which makes
+// depth compositing deterministic (ties in depth go to the smaller id).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace tetray::render {
+
+inline constexpr std::uint32_t kNoHit = std::numeric_limits<std::uint32_t>::max();
+
+struct Framebuffer {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;         // 4 per pixel, linear, premultiplied; background 0,0,0,0
+  std::vector<float> depth;        // view-axis depth; background +infinity
+  std::vector<std::uint32_t> hit;  // tie-break key of the surface hit (kNoHit: background)
+
+  Framebuffer() = default;
+  Framebuffer(int w, int h)
+      : width(w),
+        height(h),
+        rgba(4 * static_cast<std::size_t>(w) * h, 0.0f),
+        depth(static_cast<std::size_t>(w) * h, std::numeric_limits<float>::infinity()),
+        hit(static_cast<std::size_t>(w) * h, kNoHit) {}
+
+  std::size_t pixel_count() const { return depth.size(); }
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
+};
+
+// The depth-compositing rule shared by every compositor and every test: nearer depth wins,
+// equal depth goes to the smaller hit key.
+inline bool wins_over(float depth_a, std::uint32_t hit_a, float depth_b, std::uint32_t hit_b) {
+  return depth_a < depth_b || (depth_a == depth_b && hit_a < hit_b);
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,37 @@
+// The renderer's own copy of one rank's tets: vertices as (x, y, z, f) floats relative to a
+// double-precision local origin (meshes far from the origin keep float precision), and tets as
+// 4 x int32 vertex indices. After a BVH build the tets are stored in leaf order, so a leaf is a
+// contiguous range; `tet_ids` keeps each tet's id in the caller's numbering (used for the
+// deterministic tie rule and for reporting).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "render/vec.hpp"
+
+namespace tetray::render {
+
+struct alignas(16) Vertex {
+  float x, y, z, f;
+};
+
+struct Tet {
+  std::array<std::int32_t, 4> v;
+};
+
+struct TetVolume {
+  Vec3d origin{};                   // world = origin + local
+  std::vector<Vertex> vertices;     // indexed by the caller's point index
+  std::vector<Tet> tets;            // in BVH leaf order once a BVH is built
+  std::vector<std::uint32_t> tet_ids;  // caller's id of tets[k]
+  std::vector<float> color_field;   // optional per-vertex field to color by (empty: none)
+
+  std::size_t bytes() const {
+    return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +
+           tet_ids.capacity() * sizeof(std::uint32_t) + color_field.capacity() * sizeof(float);
+  }
+};
+
+}  // namespace tetray::render

@@ -1,0 +1,74 @@
+// Bringing a new time step into the renderer (seed 000 §6.2, Schema II): one BVH per rank kept
+// across steps. New point data is converted into the vertex store and the BVH refit in the same
+// pass where possible (fused ingest, so each byte is read once); field-only changes touch only
+// the scalar ranges; a topology change or a quality loss past the threshold rebuilds.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "render/bvh.hpp"
+#include "render/tet_volume.hpp"
+
+namespace tetray::render {
+
+enum class ScalarKind : std::uint8_t { f32, f64 };
+
+// The solver's point arrays as the renderer reads them (non-owning).
+struct PointSource {
+  const void* xyz = nullptr;  // interleaved
+  ScalarKind xyz_kind = ScalarKind::f64;
+  const void* displacement = nullptr;  // optional, interleaved, added to xyz
+  ScalarKind displacement_kind = ScalarKind::f64;
+  std::size_t count = 0;
+};
+
+struct FieldSource {
+  const void* values = nullptr;
+  ScalarKind kind = ScalarKind::f64;
+  std::size_t count = 0;
+};
+
+enum class BvhUpdateKind { none, field_only, refit, rebuild };
+const char* to_string(BvhUpdateKind kind);
+
+struct UpdatePolicy {
+  double rebuild_ratio = 1.5;  // rebuild when SAH cost / cost at build exceeds this
+  BvhBuildOptions build{};
+};
+
+struct UpdateResult {
+  BvhUpdateKind kind = BvhUpdateKind::none;
+  double quality_ratio = 1.0;  // SAH cost now / at the last build
+  double ingest_refit_ms = 0;
+  double rebuild_ms = 0;
+};
+
+struct StepChanges {
+  bool geometry = false;
+  bool field = false;
+  bool topology = false;
+};
+
+// Sets the volume's topology from `tets` (4 indices per tet, already validated to lie in
+// [0, point_count)), keeping only tets whose `keep` flag is set when `keep` is non-empty, with
+// ids `ids` (or their position when empty). Points and field are then ingested and the BVH
+// built. The local origin is the center of the points' bounding box.
+UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64_t> tets,
+                         std::span<const std::uint8_t> keep, std::span<const std::uint32_t> ids,
+                         const PointSource& points, const FieldSource& field,
+                         const UpdatePolicy& policy);
+
+// A new step on the same topology: converts what changed and refits (field only, or geometry
+// and field), rebuilding when the quality ratio passes the policy's threshold.
+UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& points,
+                           const FieldSource& field, StepChanges changes,
+                           const UpdatePolicy& policy);
+
+// Refits from the vertex store as it is: all 4D bounds (geometry = true) or only the scalar
+// ranges. Parallel over the subtrees recorded at build, then the top nodes; the result is
+// bitwise independent of the thread count.
+void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry);
+
+}  // namespace tetray::render

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Install every Debian 12 package tetray needs, then configure and build in
+# Release into build/ (executables in build/bin/). Idempotent: a second run
+# installs nothing and rebuilds only what changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config git clang-format
+  libvtk9-dev libopenexr-dev libopenmpi-dev openmpi-bin libtbb-dev
+  libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
+  libxsimd-dev libembree-dev python3-imath libeigen3-dev libcli11-dev gfortran
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+[ "${TETRAY_SETUP_INSTALL_ONLY:-0}" = 1 ] && exit 0
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${TETRAY_CMAKE_ARGS:-}
+cmake --build build

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Build (through setup.sh) and run the whole test suite with ctest.
+#   scripts/test.sh             Release build in build/, every test
+#   scripts/test.sh --sanitize  ASan+UBSan build in build-asan/, unit tests only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc)
+if [ "${1:-}" = "--sanitize" ]; then
+  TETRAY_SETUP_INSTALL_ONLY=1 scripts/setup.sh
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETRAY_SANITIZE=ON \
+    -DTETRAY_BUILD_BENCHMARKS=OFF ${TETRAY_CMAKE_ARGS:-}
+  cmake --build build-asan
+  # Open MPI's own allocations are reported as leaks by LeakSanitizer; the leak check is
+  # about tetray, so it stays on for the unit tests that do not start MPI.
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  export ASAN_OPTIONS=detect_leaks=1
+  ctest --test-dir build-asan -L unit --output-on-failure -j "$jobs"
+  exit 0
+fi
+scripts/setup.sh
+ctest --test-dir build --output-on-failure -j "$jobs"
