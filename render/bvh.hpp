@@ -34,23 +34,33 @@ struct BvhBuildOptions {
 
 struct Bvh {
   std::vector<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
-  // Subtree roots recorded at build time for parallel refit (seed 000 §6.2), and the nodes
-  // above them in an order where children come before parents.
-  std::vector<std::uint32_t> subtree_roots;
-  std::vector<std::uint32_t> top_nodes_bottom_up;
-  double sah_cost_at_build = 0;  // for the rebuild policy
+  // Subtrees recorded at build time for parallel refit (seed 000 §6.2): each subtree's root
+  // sits among the top nodes, the rest of it in nodes [begin, end), children after parents.
+  struct Subtree {
+    std::uint32_t root, begin, end;
+  };
+  std::vector<Subtree> subtrees;
+  std::vector<std::uint32_t> top_nodes_bottom_up;  // inner nodes above the subtrees
+  double sah_cost_at_build = 0;                    // for the rebuild policy
+  double sah_cost_now = 0;                         // after the last refit
 
   bool empty() const { return nodes.empty(); }
   std::size_t bytes() const { return nodes.capacity() * sizeof(BvhNode); }
 };
 
-// Builds the BVH over volume.tets and reorders volume.tets and volume.tet_ids into leaf order.
-// Parallel with oneTBB within the calling task arena.
+// Builds the BVH over volume.tets and reorders volume.tets and volume.tet_ids into leaf order,
+// then fits the node bounds (refit_bvh). The tree and its layout depend only on the data, not
+// on the thread count. Parallel with oneTBB within the calling task arena.
 Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options);
 
 // SAH cost of the tree with the node bounds it has now (traversal cost 1, tet cost 1,
 // normalised by the root's surface area): the quality measure of the rebuild policy.
 double sah_cost(const Bvh& bvh);
+
+// Refits from the vertex store as it is: all 4D bounds (geometry = true) or only the scalar
+// ranges. Parallel over the recorded subtrees, then the top nodes; bitwise independent of the
+// thread count. Updates sah_cost_now when geometry changes.
+void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry);
 
 // 4D bounds of one tet.
 Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet);

@@ -17,14 +17,30 @@ CameraFrame make_frame(const Camera& camera) {
   return frame;
 }
 
+namespace {
+
+Vec3d column_term(const CameraFrame& frame, double px, int width) {
+  return frame.forward + ((2.0 * px / width - 1.0) * frame.scale_x) * frame.right;
+}
+
+Vec3d row_term(const CameraFrame& frame, double py, int height) {
+  return ((1.0 - 2.0 * py / height) * frame.scale_y) * frame.up;
+}
+
+}  // namespace
+
 Vec3d CameraFrame::direction_at(double px, double py, int width, int height) const {
-  const double ndc_x = (2.0 * px / width - 1.0) * scale_x;
-  const double ndc_y = (1.0 - 2.0 * py / height) * scale_y;
-  return forward + ndc_x * right + ndc_y * up;
+  return column_term(*this, px, width) + row_term(*this, py, height);
 }
 
 Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j) {
   return normalize(frame.direction_at(i + 0.5, j + 0.5, camera.width, camera.height));
+}
+
+PixelDirections::PixelDirections(const CameraFrame& frame, const Camera& camera)
+    : column(camera.width), row(camera.height) {
+  for (int i = 0; i < camera.width; ++i) column[i] = column_term(frame, i + 0.5, camera.width);
+  for (int j = 0; j < camera.height; ++j) row[j] = row_term(frame, j + 0.5, camera.height);
 }
 
 Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,

@@ -31,9 +31,9 @@ enum class PacketSize { single, p8x8, p16x16 };
 struct TraceStats {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;
-  std::uint64_t packet_box_tests = 0;      // packet-node visits that needed a geometric test
-  std::uint64_t ray_box_tests = 0;         // individual ray-box tests
-  std::uint64_t isorange_tests = 0;        // node and tet iso-range tests
+  std::uint64_t packet_box_tests = 0;  // packet-node visits that needed a geometric test
+  std::uint64_t ray_box_tests = 0;     // individual ray-box tests
+  std::uint64_t isorange_tests = 0;    // node and tet iso-range tests
   std::uint64_t isopolygon_extractions = 0;
   std::uint64_t ray_isopolygon_tests = 0;  // individual ray-isopolygon tests
   std::uint64_t frustum_culled_isopolygons = 0;

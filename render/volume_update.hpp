@@ -54,21 +54,17 @@ struct StepChanges {
 // Sets the volume's topology from `tets` (4 indices per tet, already validated to lie in
 // [0, point_count)), keeping only tets whose `keep` flag is set when `keep` is non-empty, with
 // ids `ids` (or their position when empty). Points and field are then ingested and the BVH
-// built. The local origin is the center of the points' bounding box.
+// built. The local origin is `origin` when given (ranks that share one get bitwise equal
+// vertices on shared points), else the center of the points' bounding box.
 UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64_t> tets,
                          std::span<const std::uint8_t> keep, std::span<const std::uint32_t> ids,
                          const PointSource& points, const FieldSource& field,
-                         const UpdatePolicy& policy);
+                         const UpdatePolicy& policy, const Vec3d* origin = nullptr);
 
 // A new step on the same topology: converts what changed and refits (field only, or geometry
 // and field), rebuilding when the quality ratio passes the policy's threshold.
 UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& points,
                            const FieldSource& field, StepChanges changes,
                            const UpdatePolicy& policy);
-
-// Refits from the vertex store as it is: all 4D bounds (geometry = true) or only the scalar
-// ranges. Parallel over the subtrees recorded at build, then the top nodes; the result is
-// bitwise independent of the thread count.
-void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry);
 
 }  // namespace tetray::render

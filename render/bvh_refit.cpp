@@ -1,0 +1,112 @@
+// Refitting the implicit BVH for a new time step (seed 000 §6.2, Schema II): the recorded
+// subtrees are refit in parallel, children before parents, then the few top nodes. Field-only
+// refits touch only the scalar ranges. The SAH cost of the refit tree, the quality measure of
+// the rebuild policy, is summed on the way in a fixed order, so it too is independent of the
+// thread count.
+#include <tbb/parallel_for.h>
+
+#include <limits>
+
+#include "render/bounds.hpp"
+#include "render/bvh.hpp"
+
+namespace tetray::render {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Grows bounds by a tet's vertices in dimensions [first_axis, 4): 0 for x, y, z and f,
+// 3 for the scalar range alone.
+template <int first_axis>
+void grow_by_tet(const TetVolume& volume, const Tet& tet, Bounds4& b) {
+  for (std::int32_t v : tet.v) {
+    const float* p = &volume.vertices[v].x;
+    for (int a = first_axis; a < 4; ++a) {
+      b.lo[a] = std::min(b.lo[a], p[a]);
+      b.hi[a] = std::max(b.hi[a], p[a]);
+    }
+  }
+}
+
+constexpr Bounds4 kEmptyBounds{{kInf, kInf, kInf, kInf}, {-kInf, -kInf, -kInf, -kInf}};
+
+template <bool geometry>
+void fit_leaf(const TetVolume& volume, BvhNode& node) {
+  constexpr int first_axis = geometry ? 0 : 3;
+  Bounds4 b = kEmptyBounds;
+  for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
+    grow_by_tet<first_axis>(volume, volume.tets[t], b);
+  for (int a = first_axis; a < 4; ++a) {
+    node.bounds.lo[a] = b.lo[a];
+    node.bounds.hi[a] = b.hi[a];
+  }
+}
+
+template <bool geometry>
+void fit_inner(std::vector<BvhNode>& nodes, BvhNode& node) {
+  const Bounds4& l = nodes[node.first].bounds;
+  const Bounds4& r = nodes[node.first + 1].bounds;
+  for (int a = geometry ? 0 : 3; a < 4; ++a) {
+    node.bounds.lo[a] = std::min(l.lo[a], r.lo[a]);
+    node.bounds.hi[a] = std::max(l.hi[a], r.hi[a]);
+  }
+}
+
+// Fits one node and returns its contribution to the (unnormalised) SAH cost.
+template <bool geometry>
+double fit_node(const TetVolume& volume, std::vector<BvhNode>& nodes, std::uint32_t i) {
+  BvhNode& node = nodes[i];
+  if (node.is_leaf()) {
+    fit_leaf<geometry>(volume, node);
+    return static_cast<double>(half_area(node.bounds)) * node.count;
+  }
+  fit_inner<geometry>(nodes, node);
+  return half_area(node.bounds);
+}
+
+template <bool geometry>
+void refit(const TetVolume& volume, Bvh& bvh) {
+  std::vector<double> subtree_cost(bvh.subtrees.size());
+  tbb::parallel_for(std::size_t{0}, bvh.subtrees.size(), [&](std::size_t s) {
+    const Bvh::Subtree& st = bvh.subtrees[s];
+    double cost = 0;
+    for (std::uint32_t i = st.end; i-- > st.begin;)
+      cost += fit_node<geometry>(volume, bvh.nodes, i);
+    subtree_cost[s] = cost + fit_node<geometry>(volume, bvh.nodes, st.root);
+  });
+  double cost = 0;
+  for (double c : subtree_cost) cost += c;
+  for (std::uint32_t i : bvh.top_nodes_bottom_up) cost += fit_node<geometry>(volume, bvh.nodes, i);
+  if (geometry) {
+    const float root_area = half_area(bvh.nodes[0].bounds);
+    bvh.sah_cost_now = root_area > 0 ? cost / root_area : 0.0;
+  }
+}
+
+}  // namespace
+
+void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry) {
+  if (bvh.empty()) return;
+  if (geometry) {
+    refit<true>(volume, bvh);
+  } else {
+    refit<false>(volume, bvh);
+  }
+}
+
+double sah_cost(const Bvh& bvh) {
+  if (bvh.empty()) return 0;
+  double cost = 0;
+  for (const BvhNode& node : bvh.nodes)
+    cost += static_cast<double>(half_area(node.bounds)) * (node.is_leaf() ? node.count : 1);
+  const float root_area = half_area(bvh.nodes[0].bounds);
+  return root_area > 0 ? cost / root_area : 0.0;
+}
+
+Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
+  Bounds4 b = kEmptyBounds;
+  grow_by_tet<0>(volume, tet, b);
+  return b;
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,51 @@
+// A packet of S x S primary rays sharing the eye (seed 000 §3: 16 x 16 by default), stored as
+// structure of arrays for the SIMD kernels, with the interval bounds of its directions used by
+// the frustum tests (seed 000 §4.3, §5.2 III). Rays of a packet that fall off the image repeat a
+// pixel at the edge (so the frustum stays tight) and start with tmax = -inf, so they hit nothing.
+#pragma once
+
+#include <cstdint>
+
+#include "render/camera.hpp"
+#include "render/framebuffer.hpp"
+#include "render/simd.hpp"
+
+namespace tetray::render {
+
+template <int S>
+struct alignas(64) RayPacket {
+  static constexpr int kRays = S * S;
+  using Lanes = simd::LaneTypes<kRays>;
+  static constexpr int kLaneWidth = Lanes::width;
+
+  alignas(64) float dx[kRays], dy[kRays], dz[kRays];  // normalized directions
+  alignas(64) float ix[kRays], iy[kRays], iz[kRays];  // their inverses (zero guarded)
+  alignas(64) float tmax[kRays];                      // nearest hit so far
+  alignas(64) std::uint32_t key[kRays];               // tie key of that hit
+  alignas(64) std::int32_t tet[kRays];                // volume.tets index of that hit, -1: none
+  alignas(64) std::int32_t iso[kRays];                // isovalue index of that hit
+  alignas(64) float nx[kRays], ny[kRays], nz[kRays];  // unnormalized normal at that hit
+
+  Vec3f eye;                       // relative to the volume's origin
+  float inv_lo[3], inv_hi[3];      // interval of the inverse directions, per axis
+  bool inv_straddles[3];           // the directions have both signs on this axis
+  Vec3f corner[4];                 // unnormalized corner directions: all rays in their hull
+  float corner_length_sq_max = 0;  // of the corners
+  float tmax_bound = 0;            // >= tmax of every ray (packet occlusion culling)
+  // Image rows of points (relative to the eye) in packet row units:
+  // row = row_center - row_scale * dot(p, up) / dot(p, forward).
+  Vec3f forward, up;
+  float row_center = 0, row_scale = 0;
+  int x0 = 0, y0 = 0;  // pixel of ray 0
+};
+
+// Fills `packet` with the rays of the tile whose top-left pixel is (x0, y0).
+template <int S>
+void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
+                  const PixelDirections& directions, Vec3d origin, int x0, int y0);
+
+// The largest tmax of the packet's rays.
+template <int S>
+void update_tmax_bound(RayPacket<S>& packet);
+
+}  // namespace tetray::render

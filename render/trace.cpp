@@ -1,0 +1,146 @@
+// Frame driver: splits the image into 16 x 16 blocks traced in parallel, each as packets of
+// the chosen size; the leaf operation intersects on-the-fly isopolygons (seed 000 §4.4: no
+// cache) of every tet whose own range straddles an isovalue (§5.2 V).
+#include "render/trace.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "render/isopolygon_intersect.hpp"
+#include "render/packet_traversal.hpp"
+#include "render/shade.hpp"
+
+namespace tetray::render {
+namespace {
+
+constexpr int kBlock = 16;
+
+struct Frame {
+  const TetVolume& volume;
+  const Bvh& bvh;
+  const Camera& camera;
+  CameraFrame view;
+  PixelDirections directions;
+  IsoSet isos;
+  int surface_of_sorted[kMaxIsovalues];
+  ShadeContext shade;
+};
+
+template <int S, bool kStats>
+void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
+  RayPacket<S> packet;
+  setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, x0, y0);
+  PacketTraversal<S, kStats> traversal(f.bvh, f.isos, packet, stats);
+  IsopolygonIntersector<S, kStats> intersector(packet, stats);
+  traversal.run([&](const BvhNode& leaf, int first_active) {
+    bool hit = false;
+    for (std::uint32_t t = leaf.first; t < leaf.first + leaf.count; ++t) {
+      const Tet& tet = f.volume.tets[t];
+      const Vertex* v[4] = {&f.volume.vertices[tet.v[0]], &f.volume.vertices[tet.v[1]],
+                            &f.volume.vertices[tet.v[2]], &f.volume.vertices[tet.v[3]]};
+      const float fmin = std::min(std::min(v[0]->f, v[1]->f), std::min(v[2]->f, v[3]->f));
+      const float fmax = std::max(std::max(v[0]->f, v[1]->f), std::max(v[2]->f, v[3]->f));
+      if constexpr (kStats) ++stats.isorange_tests;
+      for (int k = 0; k < f.isos.count && f.isos.values[k] <= fmax; ++k) {
+        if (!range_straddles(fmin, fmax, f.isos.values[k])) continue;
+        if constexpr (kStats) ++stats.isopolygon_extractions;
+        const Isopolygon poly = extract_isopolygon(v, f.isos.values[k]);
+        const PolygonHit id{f.volume.tet_ids[t], static_cast<std::int32_t>(t), k};
+        hit |= intersector.intersect(poly, id, first_active);
+      }
+    }
+    if (hit) update_tmax_bound(packet);
+  });
+  for (int r = 0; r < RayPacket<S>::kRays; ++r) {
+    const int i = x0 + r % S, j = y0 + r / S;
+    if (i >= f.camera.width || j >= f.camera.height) continue;
+    if constexpr (kStats) ++stats.rays;
+    if (packet.tet[r] < 0) continue;
+    if constexpr (kStats) ++stats.hits;
+    const std::size_t p = image.index(i, j);
+    shade_hit(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]},
+              {packet.nx[r], packet.ny[r], packet.nz[r]}, packet.tmax[r], packet.tet[r],
+              packet.iso[r], &image.rgba[4 * p], image.depth[p]);
+    image.hit[p] = packet.key[r];
+  }
+}
+
+template <int S, bool kStats>
+void trace_blocks(const Frame& f, Framebuffer& image, TraceStats* total) {
+  const int blocks_x = (f.camera.width + kBlock - 1) / kBlock;
+  const int blocks = blocks_x * ((f.camera.height + kBlock - 1) / kBlock);
+  tbb::enumerable_thread_specific<TraceStats> stats;
+  tbb::parallel_for(0, blocks, [&](int b) {
+    TraceStats& local = stats.local();
+    const int bx = b % blocks_x * kBlock, by = b / blocks_x * kBlock;
+    for (int y = by; y < by + kBlock && y < f.camera.height; y += S)
+      for (int x = bx; x < bx + kBlock && x < f.camera.width; x += S)
+        trace_packet<S, kStats>(f, x, y, image, local);
+  });
+  if (total) {
+    for (const TraceStats& s : stats) *total += s;
+  }
+}
+
+template <int S>
+void trace_with(const Frame& f, Framebuffer& image, bool collect, TraceStats* stats) {
+  if (collect) {
+    trace_blocks<S, true>(f, image, stats);
+  } else {
+    trace_blocks<S, false>(f, image, nullptr);
+  }
+}
+
+}  // namespace
+
+TraceStats& TraceStats::operator+=(const TraceStats& o) {
+  rays += o.rays;
+  hits += o.hits;
+  packet_box_tests += o.packet_box_tests;
+  ray_box_tests += o.ray_box_tests;
+  isorange_tests += o.isorange_tests;
+  isopolygon_extractions += o.isopolygon_extractions;
+  ray_isopolygon_tests += o.ray_isopolygon_tests;
+  frustum_culled_isopolygons += o.frustum_culled_isopolygons;
+  return *this;
+}
+
+Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                  std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                  TraceStats* stats) {
+  Framebuffer image(camera.width, camera.height);
+  const CameraFrame view = make_frame(camera);
+  Frame f{volume,
+          bvh,
+          camera,
+          view,
+          PixelDirections(view, camera),
+          {},
+          {},
+          {volume, view, surfaces, nullptr, options}};
+  f.shade.surface_of_sorted = f.surface_of_sorted;
+  f.isos.count = static_cast<int>(std::min<std::size_t>(surfaces.size(), kMaxIsovalues));
+  std::iota(f.surface_of_sorted, f.surface_of_sorted + f.isos.count, 0);
+  std::sort(f.surface_of_sorted, f.surface_of_sorted + f.isos.count,
+            [&](int a, int b) { return surfaces[a].value < surfaces[b].value; });
+  for (int k = 0; k < f.isos.count; ++k) f.isos.values[k] = surfaces[f.surface_of_sorted[k]].value;
+  if (stats) *stats = {};
+  const bool collect = options.collect_stats && stats;
+  switch (options.packet) {
+    case PacketSize::single:
+      trace_with<1>(f, image, collect, stats);
+      break;
+    case PacketSize::p8x8:
+      trace_with<8>(f, image, collect, stats);
+      break;
+    case PacketSize::p16x16:
+      trace_with<16>(f, image, collect, stats);
+      break;
+  }
+  return image;
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,160 @@
+#include "render/volume_update.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "render/point_read.hpp"
+
+namespace tetray::render {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+struct Box3d {
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  double hi[3] = {-std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity()};
+  void grow(const double p[3]) {
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(p[a])) return;
+    }
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  void grow(const Box3d& b) {
+    grow(b.lo);
+    grow(b.hi);
+  }
+};
+
+Vec3d center_of_points(const PointSource& points) {
+  const Box3d box = with_points(points, [&](const auto* xyz, const auto* disp) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, points.count), Box3d{},
+        [&](const auto& block, Box3d b) {
+          for (std::size_t i = block.begin(); i != block.end(); ++i) {
+            double p[3];
+            point_position(xyz, disp, i, p);
+            b.grow(p);
+          }
+          return b;
+        },
+        [](Box3d a, const Box3d& b) {
+          a.grow(b);
+          return a;
+        });
+  });
+  if (!(box.lo[0] <= box.hi[0])) return {};
+  return {0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
+          0.5 * (box.lo[2] + box.hi[2])};
+}
+
+// Converts the changed arrays into the vertex store in one streaming pass.
+void ingest(TetVolume& volume, const PointSource& points, const FieldSource& field, bool geometry,
+            bool values) {
+  volume.vertices.resize(points.count);
+  const Vec3d o = volume.origin;
+  auto convert = [&](const auto* xyz, const auto* disp, const auto* f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.count), [&](const auto& block) {
+      for (std::size_t i = block.begin(); i != block.end(); ++i) {
+        Vertex& v = volume.vertices[i];
+        if (geometry) {
+          double p[3];
+          point_position(xyz, disp, i, p);
+          v.x = static_cast<float>(p[0] - o.x);
+          v.y = static_cast<float>(p[1] - o.y);
+          v.z = static_cast<float>(p[2] - o.z);
+        }
+        if (values) v.f = f ? static_cast<float>(f[i]) : 0.0f;
+      }
+    });
+  };
+  with_points(points, [&](const auto* xyz, const auto* disp) {
+    if (!field.values) return convert(xyz, disp, static_cast<const float*>(nullptr));
+    with_scalar(field.kind, [&](auto tag) {
+      convert(xyz, disp, static_cast<const decltype(tag)*>(field.values));
+    });
+  });
+}
+
+UpdateResult rebuild(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
+  const auto start = std::chrono::steady_clock::now();
+  bvh = build_bvh(volume, policy.build);
+  UpdateResult result;
+  result.kind = BvhUpdateKind::rebuild;
+  result.rebuild_ms = ms_since(start);
+  return result;
+}
+
+}  // namespace
+
+const char* to_string(BvhUpdateKind kind) {
+  switch (kind) {
+    case BvhUpdateKind::none:
+      return "none";
+    case BvhUpdateKind::field_only:
+      return "field_refit";
+    case BvhUpdateKind::refit:
+      return "refit";
+    case BvhUpdateKind::rebuild:
+      return "rebuild";
+  }
+  return "unknown";
+}
+
+UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64_t> tets,
+                         std::span<const std::uint8_t> keep, std::span<const std::uint32_t> ids,
+                         const PointSource& points, const FieldSource& field,
+                         const UpdatePolicy& policy, const Vec3d* origin) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t count = tets.size() / 4;
+  volume.tets.clear();
+  volume.tet_ids.clear();
+  for (std::size_t t = 0; t < count; ++t) {
+    if (!keep.empty() && !keep[t]) continue;
+    volume.tets.push_back(
+        {{static_cast<std::int32_t>(tets[4 * t]), static_cast<std::int32_t>(tets[4 * t + 1]),
+          static_cast<std::int32_t>(tets[4 * t + 2]), static_cast<std::int32_t>(tets[4 * t + 3])}});
+    volume.tet_ids.push_back(ids.empty() ? static_cast<std::uint32_t>(t) : ids[t]);
+  }
+  volume.origin = origin ? *origin : center_of_points(points);
+  ingest(volume, points, field, true, true);
+  const double ingest_ms = ms_since(start);
+  UpdateResult result = rebuild(volume, bvh, policy);
+  result.ingest_refit_ms = ingest_ms;
+  return result;
+}
+
+UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& points,
+                           const FieldSource& field, StepChanges changes,
+                           const UpdatePolicy& policy) {
+  UpdateResult result;
+  if (!changes.geometry && !changes.field) return result;
+  const auto start = std::chrono::steady_clock::now();
+  ingest(volume, points, field, changes.geometry, changes.field);
+  refit_bvh(volume, bvh, changes.geometry);
+  result.ingest_refit_ms = ms_since(start);
+  result.kind = changes.geometry ? BvhUpdateKind::refit : BvhUpdateKind::field_only;
+  if (bvh.sah_cost_at_build > 0) result.quality_ratio = bvh.sah_cost_now / bvh.sah_cost_at_build;
+  if (result.quality_ratio > policy.rebuild_ratio) {
+    const double refit_ms = result.ingest_refit_ms;
+    const double ratio = result.quality_ratio;
+    result = rebuild(volume, bvh, policy);
+    result.ingest_refit_ms = refit_ms;
+    result.quality_ratio = ratio;
+  }
+  return result;
+}
+
+}  // namespace tetray::render
