@@ -28,16 +28,22 @@ struct Range {
   std::uint32_t size() const { return end - begin; }
 };
 
+// A tet as the partitions move it: its centroid travels with it, so partitioning reads and
+// writes memory in order instead of gathering centroids by index.
+struct BuildItem {
+  Vec3f centroid;
+  std::uint32_t tet;
+};
+
 struct BuildContext {
   const BvhBuildOptions& options;
-  std::vector<std::uint32_t> order;  // tets in build order
-  std::vector<Vec3f> centroids;
-  std::vector<Box3> tet_boxes;  // SAH only
+  std::vector<BuildItem> items;  // tets in build order
+  std::vector<Box3> tet_boxes;   // SAH only, by tet
 };
 
 Box3 centroid_bounds(const BuildContext& ctx, std::uint32_t begin, std::uint32_t end) {
   Box3 box;
-  for (std::uint32_t i = begin; i < end; ++i) box.grow(ctx.centroids[ctx.order[i]]);
+  for (std::uint32_t i = begin; i < end; ++i) box.grow(ctx.items[i].centroid);
   return box;
 }
 
@@ -50,8 +56,8 @@ std::uint32_t split_object_median(const Range& r, Range& left, Range& right) {
 }
 
 std::uint32_t partition_by(BuildContext& ctx, const Range& r, auto&& goes_left) {
-  auto* first = ctx.order.data() + r.begin;
-  auto* middle = std::partition(first, ctx.order.data() + r.end, goes_left);
+  auto* first = ctx.items.data() + r.begin;
+  auto* middle = std::partition(first, ctx.items.data() + r.end, goes_left);
   return r.begin + static_cast<std::uint32_t>(middle - first);
 }
 
@@ -63,7 +69,7 @@ std::uint32_t split_bih(BuildContext& ctx, const Range& r, Range& left, Range& r
     const int axis = box.longest_axis();
     const float mid = 0.5f * (box.lo[axis] + box.hi[axis]);
     const std::uint32_t m =
-        partition_by(ctx, r, [&](std::uint32_t t) { return ctx.centroids[t][axis] < mid; });
+        partition_by(ctx, r, [&](const BuildItem& item) { return item.centroid[axis] < mid; });
     if (m != r.begin && m != r.end) {
       left = {r.begin, m, box, r.depth + 1};
       right = {m, r.end, box, r.depth + 1};
@@ -92,10 +98,10 @@ std::uint32_t split_sah(BuildContext& ctx, const Range& r, Range& left, Range& r
     const float scale = kSahBins / extent;
     Bin bins[kSahBins];
     for (std::uint32_t i = r.begin; i < r.end; ++i) {
-      const std::uint32_t t = ctx.order[i];
+      const BuildItem& item = ctx.items[i];
       const int b =
-          std::min(kSahBins - 1, static_cast<int>((ctx.centroids[t][axis] - cb.lo[axis]) * scale));
-      bins[b].box.grow(ctx.tet_boxes[t]);
+          std::min(kSahBins - 1, static_cast<int>((item.centroid[axis] - cb.lo[axis]) * scale));
+      bins[b].box.grow(ctx.tet_boxes[item.tet]);
       ++bins[b].count;
     }
     float right_cost[kSahBins];
@@ -121,8 +127,8 @@ std::uint32_t split_sah(BuildContext& ctx, const Range& r, Range& left, Range& r
   }
   if (best_axis < 0) return split_object_median(r, left, right);
   const float scale = kSahBins / (cb.hi[best_axis] - cb.lo[best_axis]);
-  const std::uint32_t m = partition_by(ctx, r, [&](std::uint32_t t) {
-    const float c = (ctx.centroids[t][best_axis] - cb.lo[best_axis]) * scale;
+  const std::uint32_t m = partition_by(ctx, r, [&](const BuildItem& item) {
+    const float c = (item.centroid[best_axis] - cb.lo[best_axis]) * scale;
     return std::min(kSahBins - 1, static_cast<int>(c)) <= best_bin;
   });
   left = {r.begin, m, r.box, r.depth + 1};
@@ -163,9 +169,7 @@ void build_subtree(BuildContext& ctx, const Range& r, std::vector<BvhNode>& out,
 
 void prepare_inputs(const TetVolume& volume, BuildContext& ctx) {
   const std::size_t n = volume.tets.size();
-  ctx.order.resize(n);
-  std::iota(ctx.order.begin(), ctx.order.end(), 0u);
-  ctx.centroids.resize(n);
+  ctx.items.resize(n);
   if (ctx.options.builder == BvhBuilder::sah) ctx.tet_boxes.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& block) {
     for (std::size_t t = block.begin(); t != block.end(); ++t) {
@@ -174,7 +178,7 @@ void prepare_inputs(const TetVolume& volume, BuildContext& ctx) {
         const Vertex& p = volume.vertices[v];
         box.grow(Vec3f{p.x, p.y, p.z});
       }
-      ctx.centroids[t] = 0.5f * (box.lo + box.hi);
+      ctx.items[t] = {0.5f * (box.lo + box.hi), static_cast<std::uint32_t>(t)};
       if (!ctx.tet_boxes.empty()) ctx.tet_boxes[t] = box;
     }
   });
@@ -182,9 +186,9 @@ void prepare_inputs(const TetVolume& volume, BuildContext& ctx) {
 
 Box3 all_centroid_bounds(const BuildContext& ctx) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, ctx.centroids.size()), Box3{},
+      tbb::blocked_range<std::size_t>(0, ctx.items.size()), Box3{},
       [&](const auto& block, Box3 box) {
-        for (std::size_t t = block.begin(); t != block.end(); ++t) box.grow(ctx.centroids[t]);
+        for (std::size_t t = block.begin(); t != block.end(); ++t) box.grow(ctx.items[t].centroid);
         return box;
       },
       [](Box3 a, const Box3& b) {
@@ -202,7 +206,7 @@ struct Pending {
 // subtree of its own; returns those, in a deterministic order.
 std::vector<Pending> build_top(BuildContext& ctx, std::vector<BvhNode>& top,
                                std::vector<std::uint32_t>& top_inner) {
-  const auto n = static_cast<std::uint32_t>(ctx.order.size());
+  const auto n = static_cast<std::uint32_t>(ctx.items.size());
   const std::uint32_t subtree_size = std::max<std::uint32_t>(
       static_cast<std::uint32_t>(std::max(1, ctx.options.leaf_size)), n / kTargetSubtrees);
   std::vector<Pending> level{{0, Range{0, n, all_centroid_bounds(ctx), 0}}}, subtrees;
@@ -255,12 +259,18 @@ void lay_out(std::vector<BvhNode>& top, std::vector<std::vector<BvhNode>>& local
   });
 }
 
-template <typename T>
-void apply_order(std::vector<T>& items, const std::vector<std::uint32_t>& order) {
-  std::vector<T> sorted(items.size());
-  tbb::parallel_for(std::size_t{0}, order.size(),
-                    [&](std::size_t i) { sorted[i] = items[order[i]]; });
-  items.swap(sorted);
+// Puts the tets and their ids into leaf order.
+void apply_order(TetVolume& volume, const std::vector<BuildItem>& order) {
+  std::vector<Tet> tets(order.size());
+  std::vector<std::uint32_t> ids(order.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size()), [&](const auto& block) {
+    for (std::size_t i = block.begin(); i != block.end(); ++i) {
+      tets[i] = volume.tets[order[i].tet];
+      ids[i] = volume.tet_ids[order[i].tet];
+    }
+  });
+  volume.tets.swap(tets);
+  volume.tet_ids.swap(ids);
 }
 
 }  // namespace
@@ -272,7 +282,7 @@ Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options) {
     volume.tet_ids.resize(volume.tets.size());
     std::iota(volume.tet_ids.begin(), volume.tet_ids.end(), 0u);
   }
-  BuildContext ctx{options, {}, {}, {}};
+  BuildContext ctx{options, {}, {}};
   prepare_inputs(volume, ctx);
   std::vector<BvhNode> top;
   const std::vector<Pending> pending = build_top(ctx, top, bvh.top_nodes_bottom_up);
@@ -282,8 +292,7 @@ Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options) {
     build_subtree(ctx, pending[s].range, locals[s], 0);
   });
   lay_out(top, locals, pending, bvh);
-  apply_order(volume.tets, ctx.order);
-  apply_order(volume.tet_ids, ctx.order);
+  apply_order(volume, ctx.items);
   refit_bvh(volume, bvh, true);
   bvh.sah_cost_at_build = bvh.sah_cost_now;
   return bvh;

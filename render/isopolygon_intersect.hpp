@@ -48,19 +48,19 @@ class IsopolygonIntersector {
   // Intersects rays [first_active, kRays) with the polygon; returns whether any ray got a new
   // nearest hit.
   bool intersect(const Isopolygon& poly, const PolygonHit& id, int first_active) {
+    if (poly.vertex_count < 3) return false;
     Setup s;
-    if (!prepare(poly, s)) return false;
+    s.n = poly.vertex_count;
+    for (int k = 0; k < s.n; ++k) s.rel[k] = poly.p[k] - packet_.eye;
     int begin = first_active, end = Packet::kRays;
-    if constexpr (S > 1) {
-      restrict_to_rows(s, begin, end);
-      if (begin >= end || full_miss(s)) {
-        if constexpr (kStats) ++stats_.frustum_culled_isopolygons;
-        return false;
-      }
+    if constexpr (S > 1) restrict_to_rows(s, begin, end);
+    if (begin < end) {
+      for (int k = 0; k < s.n; ++k)
+        s.edge[k] = edge_normal(poly.p[k], poly.p[k + 1 < s.n ? k + 1 : 0]);
+      if (S == 1 || !full_miss(s)) return intersect_rays(poly, s, id, begin, end);
     }
-    bool any_hit = false;
-    for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
-    return any_hit;
+    if constexpr (kStats) ++stats_.frustum_culled_isopolygons;
+    return false;
   }
 
  private:
@@ -72,14 +72,13 @@ class IsopolygonIntersector {
     float plane = 0;  // dot(normal, rel[0])
   };
 
-  bool prepare(const Isopolygon& poly, Setup& s) const {
-    s.n = poly.vertex_count;
-    for (int k = 0; k < s.n; ++k) s.rel[k] = poly.p[k] - packet_.eye;
-    for (int k = 0; k < s.n; ++k) s.edge[k] = edge_normal(poly.p[k], poly.p[(k + 1) % s.n]);
+  bool intersect_rays(const Isopolygon& poly, Setup& s, const PolygonHit& id, int begin, int end) {
     const Vec3f* p = poly.p;
     s.normal = s.n == 3 ? cross(p[1] - p[0], p[2] - p[0]) : cross(p[2] - p[0], p[3] - p[1]);
     s.plane = dot(s.normal, s.rel[0]);
-    return s.n >= 3;
+    bool any_hit = false;
+    for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
+    return any_hit;
   }
 
   static bool position_first(Vec3f a, Vec3f b) {

@@ -72,6 +72,25 @@ class PacketTraversal {
     }
   }
 
+  // Interval arithmetic over the packet's inverse directions: every ray's entry distance is at
+  // least `enter` and its exit at most `leave`; rounding is monotonic, so the bounds hold for
+  // the per-ray float computations too.
+  bool frustum_misses(const Bounds4& b) const {
+    float enter = 0, leave = std::numeric_limits<float>::infinity();
+    const float e[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
+    for (int a = 0; a < 3; ++a) {
+      if (packet_.inv_straddles[a]) continue;
+      const bool positive = packet_.inv_lo[a] >= 0;
+      const float near_plane = (positive ? b.lo[a] : b.hi[a]) - e[a];
+      const float far_plane = (positive ? b.hi[a] : b.lo[a]) - e[a];
+      enter =
+          std::max(enter, std::min(near_plane * packet_.inv_lo[a], near_plane * packet_.inv_hi[a]));
+      leave =
+          std::min(leave, std::max(far_plane * packet_.inv_lo[a], far_plane * packet_.inv_hi[a]));
+    }
+    return enter > leave * kRobustFar || enter > packet_.tmax_bound;
+  }
+
  private:
   static constexpr int kStackSize = 128;  // the builders bound the depth well below this
 
@@ -141,25 +160,6 @@ class PacketTraversal {
     const V near = vmax(vmax(vmin(tx0, tx1), vmin(ty0, ty1)), vmax(vmin(tz0, tz1), V(0.0f)));
     const V far = vmin(vmin(vmax(tx0, tx1), vmax(ty0, ty1)), vmax(tz0, tz1)) * kRobustFar;
     return near <= vmin(far, simd::load(packet_.tmax + r, V{}));
-  }
-
-  // Interval arithmetic over the packet's inverse directions: every ray's entry distance is at
-  // least `enter` and its exit at most `leave`; rounding is monotonic, so the bounds hold for
-  // the per-ray float computations too.
-  bool frustum_misses(const Bounds4& b) const {
-    float enter = 0, leave = std::numeric_limits<float>::infinity();
-    const float e[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
-    for (int a = 0; a < 3; ++a) {
-      if (packet_.inv_straddles[a]) continue;
-      const bool positive = packet_.inv_lo[a] >= 0;
-      const float near_plane = (positive ? b.lo[a] : b.hi[a]) - e[a];
-      const float far_plane = (positive ? b.hi[a] : b.lo[a]) - e[a];
-      enter =
-          std::max(enter, std::min(near_plane * packet_.inv_lo[a], near_plane * packet_.inv_hi[a]));
-      leave =
-          std::min(leave, std::max(far_plane * packet_.inv_lo[a], far_plane * packet_.inv_hi[a]));
-    }
-    return enter > leave * kRobustFar || enter > packet_.tmax_bound;
   }
 
   const Bvh& bvh_;

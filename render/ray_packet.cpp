@@ -11,8 +11,7 @@ namespace {
 // compute 0 * inf.
 float safe_inverse(float d) {
   constexpr float kHuge = 1e30f;
-  if (std::abs(d) < 1.0f / kHuge) return std::copysign(kHuge, d);
-  return 1.0f / d;
+  return std::abs(d) < 1.0f / kHuge ? std::copysign(kHuge, d) : 1.0f / d;
 }
 
 }  // namespace
@@ -25,26 +24,37 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
   packet.x0 = x0;
   packet.y0 = y0;
   const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
-  float* inv[3] = {packet.ix, packet.iy, packet.iz};
-  for (int r = 0; r < RayPacket<S>::kRays; ++r) {
-    const int i = x0 + r % S, j = y0 + r / S;
-    const Vec3f d = static_cast<Vec3f>(directions.direction(std::min(i, x1), std::min(j, y1)));
-    packet.dx[r] = d.x;
-    packet.dy[r] = d.y;
-    packet.dz[r] = d.z;
-    packet.ix[r] = safe_inverse(d.x);
-    packet.iy[r] = safe_inverse(d.y);
-    packet.iz[r] = safe_inverse(d.z);
-    packet.tmax[r] = (i <= x1 && j <= y1) ? kInf : -kInf;
-    packet.key[r] = kNoHit;
-    packet.tet[r] = -1;
-    packet.iso[r] = -1;
+  for (int row = 0; row < S; ++row) {
+    const bool row_valid = y0 + row <= y1;
+    for (int col = 0; col < S; ++col) {
+      const int r = row * S + col;
+      const Vec3f d =
+          static_cast<Vec3f>(directions.direction(std::min(x0 + col, x1), std::min(y0 + row, y1)));
+      packet.dx[r] = d.x;
+      packet.dy[r] = d.y;
+      packet.dz[r] = d.z;
+      packet.tmax[r] = row_valid && x0 + col <= x1 ? kInf : -kInf;
+    }
   }
+  constexpr int n = RayPacket<S>::kRays;
+  for (int r = 0; r < n; ++r) {
+    packet.ix[r] = safe_inverse(packet.dx[r]);
+    packet.iy[r] = safe_inverse(packet.dy[r]);
+    packet.iz[r] = safe_inverse(packet.dz[r]);
+  }
+  std::fill_n(packet.key, n, kNoHit);
+  std::fill_n(packet.tet, n, -1);
+  std::fill_n(packet.iso, n, -1);
+  const float* inv[3] = {packet.ix, packet.iy, packet.iz};
   for (int a = 0; a < 3; ++a) {
-    const auto [lo, hi] = std::minmax_element(inv[a], inv[a] + RayPacket<S>::kRays);
-    packet.inv_lo[a] = *lo;
-    packet.inv_hi[a] = *hi;
-    packet.inv_straddles[a] = *lo < 0 && *hi > 0;
+    float lo = inv[a][0], hi = inv[a][0];
+    for (int r = 1; r < n; ++r) {
+      lo = std::min(lo, inv[a][r]);
+      hi = std::max(hi, inv[a][r]);
+    }
+    packet.inv_lo[a] = lo;
+    packet.inv_hi[a] = hi;
+    packet.inv_straddles[a] = lo < 0 && hi > 0;
   }
   const double px[2] = {x0 + 0.5, x1 + 0.5}, py[2] = {y0 + 0.5, y1 + 0.5};
   packet.corner_length_sq_max = 0;

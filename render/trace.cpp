@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "render/isopolygon_intersect.hpp"
@@ -29,6 +30,22 @@ struct Frame {
   ShadeContext shade;
 };
 
+void write_background(Framebuffer& image, std::size_t p) {
+  std::fill_n(&image.rgba[4 * p], 4, 0.0f);
+  image.depth[p] = std::numeric_limits<float>::infinity();
+  image.hit[p] = kNoHit;
+}
+
+Bounds4 tet_bounds(const Vertex* const v[4]) {
+  Bounds4 b;
+  for (int a = 0; a < 4; ++a) {
+    const float p0 = (&v[0]->x)[a], p1 = (&v[1]->x)[a], p2 = (&v[2]->x)[a], p3 = (&v[3]->x)[a];
+    b.lo[a] = std::min(std::min(p0, p1), std::min(p2, p3));
+    b.hi[a] = std::max(std::max(p0, p1), std::max(p2, p3));
+  }
+  return b;
+}
+
 template <int S, bool kStats>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
   RayPacket<S> packet;
@@ -41,11 +58,12 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
       const Tet& tet = f.volume.tets[t];
       const Vertex* v[4] = {&f.volume.vertices[tet.v[0]], &f.volume.vertices[tet.v[1]],
                             &f.volume.vertices[tet.v[2]], &f.volume.vertices[tet.v[3]]};
-      const float fmin = std::min(std::min(v[0]->f, v[1]->f), std::min(v[2]->f, v[3]->f));
-      const float fmax = std::max(std::max(v[0]->f, v[1]->f), std::max(v[2]->f, v[3]->f));
+      const Bounds4 box = tet_bounds(v);
       if constexpr (kStats) ++stats.isorange_tests;
-      for (int k = 0; k < f.isos.count && f.isos.values[k] <= fmax; ++k) {
-        if (!range_straddles(fmin, fmax, f.isos.values[k])) continue;
+      if (!f.isos.straddled_by(box.lo[3], box.hi[3])) continue;
+      if (S > 1 && traversal.frustum_misses(box)) continue;
+      for (int k = 0; k < f.isos.count && f.isos.values[k] <= box.hi[3]; ++k) {
+        if (!range_straddles(box.lo[3], box.hi[3], f.isos.values[k])) continue;
         if constexpr (kStats) ++stats.isopolygon_extractions;
         const Isopolygon poly = extract_isopolygon(v, f.isos.values[k]);
         const PolygonHit id{f.volume.tet_ids[t], static_cast<std::int32_t>(t), k};
@@ -58,9 +76,12 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
     const int i = x0 + r % S, j = y0 + r / S;
     if (i >= f.camera.width || j >= f.camera.height) continue;
     if constexpr (kStats) ++stats.rays;
-    if (packet.tet[r] < 0) continue;
-    if constexpr (kStats) ++stats.hits;
     const std::size_t p = image.index(i, j);
+    if (packet.tet[r] < 0) {
+      write_background(image, p);
+      continue;
+    }
+    if constexpr (kStats) ++stats.hits;
     shade_hit(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]},
               {packet.nx[r], packet.ny[r], packet.nz[r]}, packet.tmax[r], packet.tet[r],
               packet.iso[r], &image.rgba[4 * p], image.depth[p]);
@@ -111,7 +132,16 @@ TraceStats& TraceStats::operator+=(const TraceStats& o) {
 Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                   std::span<const IsoSurface> surfaces, const TraceOptions& options,
                   TraceStats* stats) {
-  Framebuffer image(camera.width, camera.height);
+  Framebuffer image;
+  trace_into(image, volume, bvh, camera, surfaces, options, stats);
+  return image;
+}
+
+void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                TraceStats* stats) {
+  if (image.width != camera.width || image.height != camera.height)
+    image = Framebuffer(camera.width, camera.height);
   const CameraFrame view = make_frame(camera);
   Frame f{volume,
           bvh,
@@ -140,7 +170,6 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
       trace_with<16>(f, image, collect, stats);
       break;
   }
-  return image;
 }
 
 }  // namespace tetray::render

@@ -62,4 +62,10 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                   std::span<const IsoSurface> surfaces, const TraceOptions& options,
                   TraceStats* stats = nullptr);
 
+// The same into `image`, whose storage is reused when it already has the camera's size (every
+// pixel is written, so no clearing pass): the form for a time loop.
+void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                TraceStats* stats = nullptr);
+
 }  // namespace tetray::render

@@ -1,0 +1,219 @@
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "reference_comparison.hpp"
+#include "render/step_store.hpp"
+#include "render/volume_update.hpp"
+
+namespace tetray::test {
+namespace {
+
+using render::BvhUpdateKind;
+using render::Camera;
+using render::Framebuffer;
+using render::IsoSurface;
+using render::PointSource;
+using render::ScalarKind;
+using render::StepChanges;
+
+PointSource points_of(const std::vector<double>& xyz) {
+  return {xyz.data(), ScalarKind::f64, nullptr, ScalarKind::f64, xyz.size() / 3};
+}
+
+render::FieldSource field_of(const std::vector<double>& f) {
+  return {f.data(), ScalarKind::f64, f.size()};
+}
+
+Camera benchmark_camera(int side) {
+  Camera camera;
+  camera.eye = {2.5, 1.8, 3.2};
+  camera.width = camera.height = side;
+  return camera;
+}
+
+const IsoSurface kSurfaces[] = {{0.0f, {0.9f, 0.6f, 0.3f}}, {0.5f, {0.3f, 0.6f, 0.9f}}};
+
+// Hit/miss must agree and depth within 1e-6 relative; returns the number of pixels that don't.
+std::size_t count_differences(const Framebuffer& a, const Framebuffer& b) {
+  std::size_t bad = 0;
+  for (std::size_t p = 0; p < a.pixel_count(); ++p) {
+    const bool ha = a.hit[p] != render::kNoHit, hb = b.hit[p] != render::kNoHit;
+    if (ha != hb) {
+      ++bad;
+    } else if (ha && std::abs(a.depth[p] - b.depth[p]) > 1e-6 * std::abs(b.depth[p])) {
+      ++bad;
+    }
+  }
+  return bad;
+}
+
+// The gyroid-twist steps of DESIGN §6, deformed from the undeformed jittered box.
+struct Series {
+  BoxMesh box;
+  std::vector<double> points, field;
+  explicit Series(int n) : box(jittered_box(n)) {}
+  void at(double t) { deform_gyroid_twist(box, t, points, field); }
+};
+
+TEST(Refit, RefitMatchesRebuildOverGyroidTwistSteps) {
+  Series series(12);
+  series.at(0.0);
+  render::TetVolume volume;
+  render::Bvh bvh;
+  render::UpdatePolicy never_rebuild;
+  never_rebuild.rebuild_ratio = 1e30;
+  const auto& tets = series.box.tets;
+  render::load_volume(volume, bvh, tets, {}, {}, points_of(series.points), field_of(series.field),
+                      never_rebuild);
+  const Camera camera = benchmark_camera(scaled_side(200));
+  for (double t : {0.1, 0.2, 0.3, 0.4}) {
+    series.at(t);
+    const auto update =
+        render::update_volume(volume, bvh, points_of(series.points), field_of(series.field),
+                              {true, true, false}, never_rebuild);
+    EXPECT_EQ(update.kind, BvhUpdateKind::refit);
+    EXPECT_LT(update.quality_ratio, 1.2) << "t = " << t;
+    const Framebuffer refit = render::trace(volume, bvh, camera, kSurfaces, {});
+    const RenderScene rebuilt = load_scene(series.points, tets, series.field);
+    const Framebuffer fresh = render::trace(rebuilt.volume, rebuilt.bvh, camera, kSurfaces, {});
+    EXPECT_EQ(count_differences(refit, fresh), 0u) << "t = " << t;
+    std::size_t hits = 0;
+    for (auto h : fresh.hit) hits += h != render::kNoHit;
+    EXPECT_GT(hits, fresh.pixel_count() / 10) << "the scene must show a surface";
+  }
+}
+
+TEST(Refit, FieldOnlyUpdateMatchesRebuild) {
+  Series series(10);
+  series.at(0.0);
+  const auto& tets = series.box.tets;
+  RenderScene scene = load_scene(series.points, tets, series.field);
+  const std::vector<double> old_points = series.points;
+  const Camera camera = benchmark_camera(scaled_side(160));
+  // New values on the same geometry: the field of a later time, sampled at the old points.
+  std::vector<double> later(series.field.size());
+  for (std::size_t p = 0; p < later.size(); ++p)
+    later[p] = std::sin(4 * old_points[3 * p] + 1.3) * std::cos(4 * old_points[3 * p + 1]) + 0.2;
+  const auto before = scene.bvh.nodes;
+  const auto update = render::update_volume(scene.volume, scene.bvh, points_of(old_points),
+                                            field_of(later), {false, true, false}, {});
+  EXPECT_EQ(update.kind, BvhUpdateKind::field_only);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(before[i].bounds.lo[a], scene.bvh.nodes[i].bounds.lo[a]) << "geometry touched";
+      ASSERT_EQ(before[i].bounds.hi[a], scene.bvh.nodes[i].bounds.hi[a]) << "geometry touched";
+    }
+  const RenderScene rebuilt = load_scene(old_points, tets, later);
+  const Framebuffer a = render::trace(scene.volume, scene.bvh, camera, kSurfaces, {});
+  const Framebuffer b = render::trace(rebuilt.volume, rebuilt.bvh, camera, kSurfaces, {});
+  EXPECT_EQ(count_differences(a, b), 0u);
+}
+
+TEST(Refit, NothingChangedSkipsTheBvh) {
+  Series series(6);
+  series.at(0.0);
+  RenderScene scene = load_scene(series.points, series.box.tets, series.field);
+  const auto before = scene.bvh.nodes;
+  const auto update = render::update_volume(scene.volume, scene.bvh, points_of(series.points),
+                                            field_of(series.field), {false, false, false}, {});
+  EXPECT_EQ(update.kind, BvhUpdateKind::none);
+  EXPECT_EQ(update.ingest_refit_ms, 0.0);
+  EXPECT_EQ(
+      std::memcmp(before.data(), scene.bvh.nodes.data(), before.size() * sizeof(render::BvhNode)),
+      0);
+}
+
+// Twists the box by several turns, folds it over itself (inverting tets) and moves it far
+// across the domain: the refit tree degrades, the policy rebuilds, and the image still matches
+// the brute-force reference.
+TEST(Refit, ExtremeDeformationRebuildsAndStaysExact) {
+  const BoxMesh box = jittered_box(7);
+  std::vector<double> points = box.points, field(box.point_count());
+  for (std::size_t p = 0; p < field.size(); ++p) {
+    const double x = points[3 * p], y = points[3 * p + 1], z = points[3 * p + 2];
+    field[p] = x * x + 0.7 * y * y + 0.4 * z * z;
+  }
+  RenderScene scene = load_scene(points, box.tets, field);
+  for (std::size_t p = 0; p < field.size(); ++p) {
+    const double x = points[3 * p], y = points[3 * p + 1], z = points[3 * p + 2];
+    const double turn = 6.0 * z, c = std::cos(turn), s = std::sin(turn);
+    const double folded = x > 0 ? -0.3 * x : x;  // folds the half x > 0 back over the rest
+    points[3 * p] = c * folded - s * y;
+    points[3 * p + 1] = s * folded + c * y + 8.0;
+  }
+  const auto update = render::update_volume(scene.volume, scene.bvh, points_of(points),
+                                            field_of(field), {true, true, false}, {});
+  EXPECT_GT(update.quality_ratio, 1.5);
+  EXPECT_EQ(update.kind, BvhUpdateKind::rebuild);
+  EXPECT_EQ(scene.bvh.sah_cost_now, scene.bvh.sah_cost_at_build) << "a fresh tree";
+  Camera camera;
+  camera.eye = {6.0, 12.0, 9.0};
+  camera.look_at = {0.0, 8.0, 0.0};
+  camera.width = camera.height = scaled_side(96);
+  const IsoSurface surfaces[] = {{0.6f, {1, 1, 1}}};
+  const AgreementCounts counts = expect_agreement(scene, camera, surfaces, "folded");
+  EXPECT_EQ(counts.failures(), 0u) << counts.summary();
+  EXPECT_GT(counts.reference_hits, 50u);
+}
+
+// The node bounds after a refit, and the tree of a build, are bitwise the same for any
+// number of threads.
+TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
+  Series series(14);
+  series.at(0.0);
+  const auto& tets = series.box.tets;
+  std::vector<std::vector<render::BvhNode>> results;
+  for (int threads : {1, 2, 8}) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      RenderScene scene = load_scene(series.points, tets, series.field);
+      Series next(14);
+      next.at(0.3);
+      render::update_volume(scene.volume, scene.bvh, points_of(next.points), field_of(next.field),
+                            {true, true, false}, {});
+      results.push_back(scene.bvh.nodes);
+    });
+  }
+  for (std::size_t k = 1; k < results.size(); ++k) {
+    ASSERT_EQ(results[k].size(), results[0].size());
+    EXPECT_EQ(std::memcmp(results[k].data(), results[0].data(),
+                          results[0].size() * sizeof(render::BvhNode)),
+              0)
+        << "thread count changed the BVH";
+  }
+}
+
+// Schema I: steps stored while the series runs render afterwards exactly as they did live, and
+// the store refuses a step past its memory budget.
+TEST(StepStore, ReplaysStoredStepsAndKeepsToItsBudget) {
+  Series series(8);
+  series.at(0.0);
+  RenderScene scene = load_scene(series.points, series.box.tets, series.field);
+  const Camera camera = benchmark_camera(scaled_side(96));
+  const std::size_t step_bytes = scene.volume.bytes() + scene.bvh.bytes();
+  render::StepStore store(3 * step_bytes);
+  std::vector<Framebuffer> live;
+  for (int step = 0; step < 4; ++step) {
+    series.at(0.1 * step);
+    render::update_volume(scene.volume, scene.bvh, points_of(series.points), field_of(series.field),
+                          {true, true, false}, {});
+    live.push_back(render::trace(scene.volume, scene.bvh, camera, kSurfaces, {}));
+    EXPECT_EQ(store.store(step, scene.volume, scene.bvh), step < 3) << "step " << step;
+  }
+  EXPECT_EQ(store.steps(), 3u);
+  EXPECT_EQ(store.bytes(), 3 * step_bytes);
+  EXPECT_EQ(store.find(3), nullptr);
+  for (int step = 0; step < 3; ++step) {
+    const auto* entry = store.find(step);
+    ASSERT_NE(entry, nullptr);
+    const Framebuffer replay = render::trace(entry->volume, entry->bvh, camera, kSurfaces, {});
+    EXPECT_EQ(image_difference(replay, live[step]), "") << "step " << step;
+  }
+  EXPECT_NE(image_difference(live[0], live[2]), "") << "the steps must differ";
+}
+
+}  // namespace
+}  // namespace tetray::test
