@@ -1,8 +1,10 @@
 // The renderer's own copy of one rank's tets: vertices as (x, y, z, f) floats relative to a
 // double-precision local origin (meshes far from the origin keep float precision), and tets as
 // 4 x int32 vertex indices. After a BVH build the tets are stored in leaf order, so a leaf is a
-// contiguous range; `tet_ids` keeps each tet's id in the caller's numbering (used for the
-// deterministic tie rule and for reporting).
+// contiguous range, and the vertices in the order the leaves first use them (seed 001's point:
+// neighbours in the tree are neighbours in memory), keeping only vertices some tet uses.
+// `tet_ids` keeps each tet's id in the caller's numbering (the deterministic tie rule) and
+// `vertex_source` each vertex's index in the caller's point arrays (empty: the same index).
 #pragma once
 
 #include <array>
@@ -23,14 +25,16 @@ struct Tet {
 
 struct TetVolume {
   Vec3d origin{};                   // world = origin + local
-  std::vector<Vertex> vertices;     // indexed by the caller's point index
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> vertex_source;  // caller's point index of vertices[k]
   std::vector<Tet> tets;            // in BVH leaf order once a BVH is built
   std::vector<std::uint32_t> tet_ids;  // caller's id of tets[k]
   std::vector<float> color_field;   // optional per-vertex field to color by (empty: none)
 
   std::size_t bytes() const {
     return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +
-           tet_ids.capacity() * sizeof(std::uint32_t) + color_field.capacity() * sizeof(float);
+           (tet_ids.capacity() + vertex_source.capacity()) * sizeof(std::uint32_t) +
+           color_field.capacity() * sizeof(float);
   }
 };
 

@@ -60,25 +60,29 @@ Vec3d center_of_points(const PointSource& points) {
           0.5 * (box.lo[2] + box.hi[2])};
 }
 
-// Converts the changed arrays into the vertex store in one streaming pass.
+// Converts the changed arrays into the vertex store in one pass; vertex k reads the caller's
+// point vertex_source[k] (k itself before the first build).
 void ingest(TetVolume& volume, const PointSource& points, const FieldSource& field, bool geometry,
             bool values) {
-  volume.vertices.resize(points.count);
+  const bool renumbered = !volume.vertex_source.empty();
+  if (!renumbered) volume.vertices.resize(points.count);
   const Vec3d o = volume.origin;
   auto convert = [&](const auto* xyz, const auto* disp, const auto* f) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.count), [&](const auto& block) {
-      for (std::size_t i = block.begin(); i != block.end(); ++i) {
-        Vertex& v = volume.vertices[i];
-        if (geometry) {
-          double p[3];
-          point_position(xyz, disp, i, p);
-          v.x = static_cast<float>(p[0] - o.x);
-          v.y = static_cast<float>(p[1] - o.y);
-          v.z = static_cast<float>(p[2] - o.z);
-        }
-        if (values) v.f = f ? static_cast<float>(f[i]) : 0.0f;
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, volume.vertices.size()),
+                      [&](const auto& block) {
+                        for (std::size_t k = block.begin(); k != block.end(); ++k) {
+                          const std::size_t i = renumbered ? volume.vertex_source[k] : k;
+                          Vertex& v = volume.vertices[k];
+                          if (geometry) {
+                            double p[3];
+                            point_position(xyz, disp, i, p);
+                            v.x = static_cast<float>(p[0] - o.x);
+                            v.y = static_cast<float>(p[1] - o.y);
+                            v.z = static_cast<float>(p[2] - o.z);
+                          }
+                          if (values) v.f = f ? static_cast<float>(f[i]) : 0.0f;
+                        }
+                      });
   };
   with_points(points, [&](const auto* xyz, const auto* disp) {
     if (!field.values) return convert(xyz, disp, static_cast<const float*>(nullptr));
@@ -121,6 +125,8 @@ UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64
   const std::size_t count = tets.size() / 4;
   volume.tets.clear();
   volume.tet_ids.clear();
+  volume.tets.reserve(count);
+  volume.tet_ids.reserve(count);
   for (std::size_t t = 0; t < count; ++t) {
     if (!keep.empty() && !keep[t]) continue;
     volume.tets.push_back(
@@ -129,6 +135,8 @@ UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64
     volume.tet_ids.push_back(ids.empty() ? static_cast<std::uint32_t>(t) : ids[t]);
   }
   volume.origin = origin ? *origin : center_of_points(points);
+  volume.vertex_source.clear();
+  volume.color_field.clear();
   ingest(volume, points, field, true, true);
   const double ingest_ms = ms_since(start);
   UpdateResult result = rebuild(volume, bvh, policy);
@@ -155,6 +163,17 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
     result.quality_ratio = ratio;
   }
   return result;
+}
+
+void load_color_field(TetVolume& volume, const FieldSource& field) {
+  volume.color_field.resize(volume.vertices.size());
+  with_scalar(field.kind, [&](auto tag) {
+    const auto* values = static_cast<const decltype(tag)*>(field.values);
+    tbb::parallel_for(std::size_t{0}, volume.vertices.size(), [&](std::size_t k) {
+      const std::size_t i = volume.vertex_source.empty() ? k : volume.vertex_source[k];
+      volume.color_field[k] = static_cast<float>(values[i]);
+    });
+  });
 }
 
 }  // namespace tetray::render

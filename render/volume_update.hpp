@@ -67,4 +67,8 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
                            const FieldSource& field, StepChanges changes,
                            const UpdatePolicy& policy);
 
+// Fills volume.color_field (the field a scene colors by) from the caller's per-point values,
+// in the vertex store's order.
+void load_color_field(TetVolume& volume, const FieldSource& field);
+
 }  // namespace tetray::render
