@@ -3,6 +3,7 @@
 // (DESIGN §3), which makes every case well defined, values equal to the isovalue included.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -42,14 +43,22 @@ inline bool comes_first(const Vertex& a, const Vertex& b) {
 
 // The point where the isosurface crosses the edge (a, b). The two ends are ordered by position
 // (not by index), so every tet sharing the edge, on any rank, computes bitwise the same point:
-// neighbouring isopolygons meet exactly and the surface has no cracks.
+// neighbouring isopolygons meet exactly and the surface has no cracks. An end whose value
+// equals the isovalue is returned exactly, so polygons meeting at a mesh vertex through
+// different edges meet there too; and the point is clamped to the edge's bounding box, which
+// rounding could otherwise leave by an ulp (the BVH bounds the vertices, not the polygons).
 inline Vec3f edge_crossing(const Vertex& a, const Vertex& b, float iso) {
   const bool a_first = comes_first(a, b);
   const Vertex& p = a_first ? a : b;
   const Vertex& q = a_first ? b : a;
+  if (p.f == iso) return {p.x, p.y, p.z};
+  if (q.f == iso) return {q.x, q.y, q.z};
   // p.f != q.f: one end is at or above the isovalue and the other below.
   const float s = (iso - p.f) / (q.f - p.f);
-  return {p.x + s * (q.x - p.x), p.y + s * (q.y - p.y), p.z + s * (q.z - p.z)};
+  auto along = [s](float from, float to) {
+    return std::clamp(from + s * (to - from), std::min(from, to), std::max(from, to));
+  };
+  return {along(p.x, q.x), along(p.y, q.y), along(p.z, q.z)};
 }
 
 // The isopolygon of a tet for an isovalue; vertex_count 0 when the tet holds none.

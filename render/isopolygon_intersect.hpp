@@ -54,10 +54,16 @@ class IsopolygonIntersector {
     for (int k = 0; k < s.n; ++k) s.rel[k] = poly.p[k] - packet_.eye;
     int begin = first_active, end = Packet::kRays;
     if constexpr (S > 1) restrict_to_rows(s, begin, end);
+    const Vec3f* p = poly.p;
+    s.normal = s.n == 3 ? cross(p[1] - p[0], p[2] - p[0]) : cross(p[2] - p[0], p[3] - p[1]);
+    // A polygon of zero area (all its vertices on one tet vertex or edge, where the isovalue
+    // equals vertex values) holds no surface; its neighbours hold it. Its edge values would all
+    // be zero, and "inside" for every ray.
+    if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) begin = end;
     if (begin < end) {
       for (int k = 0; k < s.n; ++k)
         s.edge[k] = edge_normal(poly.p[k], poly.p[k + 1 < s.n ? k + 1 : 0]);
-      if (S == 1 || !full_miss(s)) return intersect_rays(poly, s, id, begin, end);
+      if (S == 1 || !full_miss(s)) return intersect_rays(s, id, begin, end);
     }
     if constexpr (kStats) ++stats_.frustum_culled_isopolygons;
     return false;
@@ -72,9 +78,7 @@ class IsopolygonIntersector {
     float plane = 0;  // dot(normal, rel[0])
   };
 
-  bool intersect_rays(const Isopolygon& poly, Setup& s, const PolygonHit& id, int begin, int end) {
-    const Vec3f* p = poly.p;
-    s.normal = s.n == 3 ? cross(p[1] - p[0], p[2] - p[0]) : cross(p[2] - p[0], p[3] - p[1]);
+  bool intersect_rays(Setup& s, const PolygonHit& id, int begin, int end) {
     s.plane = dot(s.normal, s.rel[0]);
     bool any_hit = false;
     for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);

@@ -7,12 +7,12 @@
 namespace tetray::render {
 namespace {
 
-// 1/d with zero components replaced by a huge value of the same sign, so that slab tests never
-// compute 0 * inf.
-float safe_inverse(float d) {
-  constexpr float kHuge = 1e30f;
-  return std::abs(d) < 1.0f / kHuge ? std::copysign(kHuge, d) : 1.0f / d;
-}
+// A direction component of exactly zero becomes a tiny one of the same sign. Every test then
+// sees the same, slightly tilted ray: a ray in the plane of a box face (the eye on a grid
+// plane) is inside or outside the box on the same side where the isopolygon tests put it, so
+// exact ties on shared faces resolve the same way in every packet layout; and the slab test
+// never computes 0 * inf.
+float tilt_zero(float d) { return d == 0 ? std::copysign(1e-20f, d) : d; }
 
 }  // namespace
 
@@ -30,17 +30,17 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
       const int r = row * S + col;
       const Vec3f d =
           static_cast<Vec3f>(directions.direction(std::min(x0 + col, x1), std::min(y0 + row, y1)));
-      packet.dx[r] = d.x;
-      packet.dy[r] = d.y;
-      packet.dz[r] = d.z;
+      packet.dx[r] = tilt_zero(d.x);
+      packet.dy[r] = tilt_zero(d.y);
+      packet.dz[r] = tilt_zero(d.z);
       packet.tmax[r] = row_valid && x0 + col <= x1 ? kInf : -kInf;
     }
   }
   constexpr int n = RayPacket<S>::kRays;
   for (int r = 0; r < n; ++r) {
-    packet.ix[r] = safe_inverse(packet.dx[r]);
-    packet.iy[r] = safe_inverse(packet.dy[r]);
-    packet.iz[r] = safe_inverse(packet.dz[r]);
+    packet.ix[r] = 1.0f / packet.dx[r];
+    packet.iy[r] = 1.0f / packet.dy[r];
+    packet.iz[r] = 1.0f / packet.dz[r];
   }
   std::fill_n(packet.key, n, kNoHit);
   std::fill_n(packet.tet, n, -1);

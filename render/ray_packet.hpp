@@ -19,7 +19,7 @@ struct alignas(64) RayPacket {
   static constexpr int kLaneWidth = Lanes::width;
 
   alignas(64) float dx[kRays], dy[kRays], dz[kRays];  // normalized directions
-  alignas(64) float ix[kRays], iy[kRays], iz[kRays];  // their inverses (zero guarded)
+  alignas(64) float ix[kRays], iy[kRays], iz[kRays];  // their inverses
   alignas(64) float tmax[kRays];                      // nearest hit so far
   alignas(64) std::uint32_t key[kRays];               // tie key of that hit
   alignas(64) std::int32_t tet[kRays];                // volume.tets index of that hit, -1: none
