@@ -175,7 +175,9 @@ class IsopolygonIntersector {
 
   // Distance to the polygon's plane. When the ray runs almost inside the plane, the division is
   // ill-conditioned; the hit then lies between the polygon's nearest and farthest vertex along
-  // the ray, and is clamped there (an exact bound for a ray through the polygon).
+  // the ray, and is clamped there (an exact bound for a ray through the polygon). A ray exactly
+  // parallel to the plane (the eye in it) sees the polygon edge-on, with no area: every edge
+  // value is zero there, so it is rejected here with a negative distance.
   F distance(const Setup& s, F dx, F dy, F dz) const {
     const F den = edge_value(s.normal, dx, dy, dz);
     const F t = F(s.plane) / den;
@@ -185,7 +187,8 @@ class IsopolygonIntersector {
       near = simd::vmin(near, v);
       far = simd::vmax(far, v);
     }
-    return simd::select(t >= near, simd::select(t <= far, t, far), near);
+    const F clamped = simd::select(t >= near, simd::select(t <= far, t, far), near);
+    return simd::select(den != F(0.0f), clamped, F(-1.0f));
   }
 
   Packet& packet_;

@@ -115,6 +115,10 @@ class Adaptor {
                  std::span<const FieldView> fields, const Changes& changes = {},
                  ExecuteReport* report = nullptr);
 
+  // Whether execute(step, time, ...) would render at least one scene. No side effects, no MPI:
+  // lets a solver (or the VTK bridge) skip preparing views on off-trigger steps.
+  bool will_render(std::int64_t step, double time) const;
+
   // Drains the writer queue, closes the logs. Collective. Idempotent.
   Status finalize();
 

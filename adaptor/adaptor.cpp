@@ -1,0 +1,104 @@
+#include "tetray/adaptor.hpp"
+
+#include <new>
+
+#include "adaptor_impl.hpp"
+#include "config_parse.hpp"
+
+namespace tetray {
+namespace {
+
+Status internal(const char* call, const char* what) {
+  return {StatusCode::internal_error, std::string(call) + ": " + what};
+}
+
+Status duplicate(MPI_Comm comm, Communicator& out) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) return {StatusCode::not_initialized, "create: MPI is not initialized"};
+  if (comm == MPI_COMM_NULL) return {StatusCode::invalid_argument, "create: comm is MPI_COMM_NULL"};
+  if (int rc = MPI_Comm_dup(comm, &out.comm); rc != MPI_SUCCESS) {
+    return {StatusCode::mpi_error, "create: MPI_Comm_dup: " + mpi_error_text(rc)};
+  }
+  // Errors on the adaptor's own communicator come back as codes instead of aborting the job.
+  MPI_Comm_set_errhandler(out.comm, MPI_ERRORS_RETURN);
+  MPI_Comm_rank(out.comm, &out.rank);
+  MPI_Comm_size(out.comm, &out.size);
+  return Status::success();
+}
+
+// Collective: every rank parses (the text or the file), the ranks agree on the outcome, and
+// rank 0 prepares the outputs.
+template <typename Parse>
+std::unique_ptr<Adaptor::Impl> make_impl(MPI_Comm comm, Parse&& parse, Status& status) {
+  Communicator c;
+  status = duplicate(comm, c);
+  if (!status.ok()) return nullptr;
+  config::ParseResult parsed = parse();
+  if (!parsed.config) status = {StatusCode::config_error, parsed.error};
+  render::ValueRange failure[1];
+  status = agree(c, status, failure);
+  if (!status.ok()) {
+    MPI_Comm_free(&c.comm);
+    return nullptr;
+  }
+  auto impl = std::make_unique<Adaptor::Impl>(c, std::move(*parsed.config));
+  status = impl->start();
+  if (!status.ok()) return nullptr;
+  return impl;
+}
+
+}  // namespace
+
+Adaptor::Adaptor(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Adaptor::~Adaptor() = default;
+
+std::unique_ptr<Adaptor> Adaptor::create(MPI_Comm comm, const std::string& config_path,
+                                         Status& status) {
+  try {
+    auto impl = make_impl(
+        comm, [&] { return config::load_config_file(config_path); }, status);
+    return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
+  } catch (const std::exception& e) {
+    status = internal("create", e.what());
+  }
+  return nullptr;
+}
+
+std::unique_ptr<Adaptor> Adaptor::create_from_yaml(MPI_Comm comm, std::string_view yaml,
+                                                   Status& status) {
+  try {
+    auto impl = make_impl(
+        comm, [&] { return config::parse_config(yaml, "<yaml string>"); }, status);
+    return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
+  } catch (const std::exception& e) {
+    status = internal("create", e.what());
+  }
+  return nullptr;
+}
+
+bool Adaptor::will_render(std::int64_t step, double time) const {
+  return impl_->will_render(step, time);
+}
+
+Status Adaptor::execute(std::int64_t step, double time, const MeshView& mesh,
+                        std::span<const FieldView> fields, const Changes& changes,
+                        ExecuteReport* report) {
+  try {
+    return impl_->execute(step, time, mesh, fields, changes, report);
+  } catch (const std::bad_alloc&) {
+    return internal("execute", "out of memory");
+  } catch (const std::exception& e) {
+    return internal("execute", e.what());
+  }
+}
+
+Status Adaptor::finalize() {
+  try {
+    return impl_->finalize();
+  } catch (const std::exception& e) {
+    return internal("finalize", e.what());
+  }
+}
+
+}  // namespace tetray

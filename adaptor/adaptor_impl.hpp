@@ -1,0 +1,93 @@
+// The adaptor behind the public API: per-scene triggers, one FieldVolume per isosurface field,
+// the render step of DESIGN §2 as a sequence of stages, and the writer thread on rank 0.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "collective.hpp"
+#include "config.hpp"
+#include "field_volume.hpp"
+#include "image_writer.hpp"
+#include "render/colormap.hpp"
+#include "render/framebuffer.hpp"
+#include "render/global_reduce.hpp"
+#include "step_record.hpp"
+#include "tetray/adaptor.hpp"
+#include "trigger.hpp"
+
+namespace tetray {
+
+class Adaptor::Impl {
+ public:
+  Impl(Communicator comm, config::Config config);
+  ~Impl();
+
+  // Collective: rank 0 creates the output directories and logs; every rank gets the outcome.
+  Status start();
+
+  bool will_render(std::int64_t step, double time) const;
+  Status execute(std::int64_t step, double time, const MeshView& mesh,
+                 std::span<const FieldView> fields, const Changes& changes, ExecuteReport* report);
+  Status finalize();
+
+ private:
+  struct SceneState {
+    SceneState(const config::Scene& scene) : config(scene), clock(scene.trigger) {}
+
+    config::Scene config;
+    TriggerClock clock;
+    std::size_t volume = 0;                      // index into volumes_
+    const render::Colormap* colormap = nullptr;  // null without color_by
+    bool due = false;
+    render::ValueRange color_range;
+    render::Framebuffer image;
+    StepRecord record;
+  };
+
+  static constexpr std::size_t kAnyVolume = ~std::size_t{0};
+
+  // The stages of a render step (DESIGN §2); each returns what went wrong on this rank, and
+  // render_step agrees on the outcome across ranks before every collective stage.
+  Status render_step(std::int64_t step, double time, const MeshView& mesh,
+                     std::span<const FieldView> fields);
+  Status validate(const MeshView& mesh, std::span<const FieldView> fields);
+  std::string convert_topology(const TetsView& tets);
+  Status check_volume(std::size_t v, const MeshView& mesh, std::span<const FieldView> fields);
+  Status update_volumes(const MeshView& mesh, std::span<const FieldView> fields);
+  Status global_inputs(std::span<const FieldView> fields);
+  Status trace_scenes(std::span<const FieldView> fields);
+  Status composite_and_submit();
+
+  // The first due scene (of volume v); null when none is due.
+  SceneState* first_due_scene(std::size_t v = kAnyVolume);
+  render::Camera camera_for(const SceneState& s, std::size_t first_range) const;
+  void print_progress(std::int64_t step, double time, double blocked_ms) const;
+  Status take_writer_error();
+
+  Communicator comm_;
+  config::Config config_;
+  std::vector<SceneState> scenes_;
+  std::vector<FieldVolume> volumes_;
+  std::vector<std::uint64_t> skipped_;  // per volume, at its last check
+  ChangeEpochs epochs_{};
+  std::vector<render::ValueRange> ranges_;  // [failure, per scene: x, y, z, color]
+
+  // This step's connectivity as int64, and the int32 conversion and tie keys kept across steps
+  // until the topology changes.
+  std::span<const std::int64_t> tets_;
+  std::vector<std::int64_t> tets_converted_;
+  std::vector<std::uint32_t> tie_keys_;
+  std::uint64_t converted_topology_ = ~std::uint64_t{0};
+  std::size_t local_tets_ = 0;
+  std::vector<std::uint8_t> color_keep_;
+  render::Vec3d origin_{};
+  std::string bvh_decision_;
+  std::uint64_t tets_skipped_ = 0;
+
+  std::unique_ptr<ImageWriter> writer_;  // rank 0 only
+  bool finalized_ = false;
+};
+
+}  // namespace tetray

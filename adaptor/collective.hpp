@@ -1,0 +1,36 @@
+// The few collective operations of the adaptor besides render/global_reduce and
+// render/composite. Each is a no-op on one rank.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "render/global_reduce.hpp"
+#include "tetray/adaptor.hpp"
+
+namespace tetray {
+
+struct Communicator {
+  MPI_Comm comm = MPI_COMM_NULL;
+  int rank = 0;
+  int size = 1;
+};
+
+// Element-wise sum and maximum onto rank 0, in place.
+int reduce_sum_to_root(const Communicator& c, std::span<std::uint64_t> values);
+int reduce_max_to_root(const Communicator& c, std::span<std::uint64_t> values);
+
+// Copies `root`'s status to every rank.
+int broadcast_status(const Communicator& c, int root, Status& status);
+
+// Agrees on a stage's outcome and, in the same allreduce, on global unions of `ranges`
+// (ranges[0] is overwritten: it carries the failure flag). Every rank gets the status of the
+// lowest failing rank, prefixed with that rank, or success.
+Status agree(const Communicator& c, const Status& local, std::span<render::ValueRange> ranges);
+
+std::string mpi_error_text(int code);
+
+}  // namespace tetray

@@ -1,0 +1,310 @@
+#include "config_parse.hpp"
+
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "render/colormap.hpp"
+#include "yaml_reader.hpp"
+
+namespace tetray::config {
+namespace {
+
+// Colors of successive isovalues when the config names none.
+constexpr render::Rgb kDefaultColors[] = {
+    {0.90f, 0.55f, 0.20f}, {0.25f, 0.55f, 0.85f}, {0.45f, 0.75f, 0.35f}, {0.80f, 0.30f, 0.45f}};
+
+render::Vec3d vec3(const YamlReader& r, const YAML::Node& node, std::string_view key) {
+  const auto v = r.numbers(node, key, 3, 3);
+  return {v[0], v[1], v[2]};
+}
+
+render::Vec3d nonzero_vec3(const YamlReader& r, const YAML::Node& node, std::string_view key) {
+  const render::Vec3d v = vec3(r, node, key);
+  if (dot(v, v) == 0) r.fail(node, key, "must not be the zero vector");
+  return v;
+}
+
+bool parallel(render::Vec3d a, render::Vec3d b) {
+  const render::Vec3d c = cross(a, b);
+  return dot(c, c) <= 1e-20 * dot(a, a) * dot(b, b);
+}
+
+Trigger parse_trigger(const YamlReader& r, const YAML::Node& node, std::string_view key) {
+  r.allow_keys(node, key, {"every", "every_time"});
+  const bool steps = static_cast<bool>(node["every"]);
+  const bool time = static_cast<bool>(node["every_time"]);
+  if (steps == time) r.fail(node, key, "give exactly one of every (steps) or every_time");
+  Trigger t;
+  if (steps) t.every_steps = r.integer_in(node["every"], child_key(key, "every"), 1, 1'000'000'000);
+  if (time) {
+    t.every_time = r.number(node["every_time"], child_key(key, "every_time"));
+    if (t.every_time <= 0) r.fail(node["every_time"], child_key(key, "every_time"), "must be > 0");
+  }
+  return t;
+}
+
+Output parse_output(const YamlReader& r, const YAML::Node& node) {
+  const std::string key = "output";
+  r.allow_keys(
+      node, key,
+      {"directory", "formats", "cinema", "png_compression", "writer_queue_depth", "quiet"});
+  Output out;
+  if (node["directory"]) out.directory = r.string(node["directory"], "output.directory");
+  if (const YAML::Node formats = node["formats"]) {
+    r.expect_list(formats, "output.formats");
+    if (formats.size() == 0) r.fail(formats, "output.formats", "name at least one of exr, png");
+    out.exr = out.png = false;
+    for (std::size_t i = 0; i < formats.size(); ++i) {
+      const std::string f = r.choice(formats[i], item_key("output.formats", i), {"exr", "png"});
+      (f == "exr" ? out.exr : out.png) = true;
+    }
+  }
+  if (node["cinema"]) out.cinema = r.boolean(node["cinema"], "output.cinema");
+  if (node["png_compression"]) {
+    out.png_compression =
+        static_cast<int>(r.integer_in(node["png_compression"], "output.png_compression", 0, 9));
+  }
+  if (node["writer_queue_depth"]) {
+    out.queue_depth = static_cast<int>(
+        r.integer_in(node["writer_queue_depth"], "output.writer_queue_depth", 0, 64));
+  }
+  if (node["quiet"]) out.quiet = r.boolean(node["quiet"], "output.quiet");
+  return out;
+}
+
+render::UpdatePolicy parse_bvh(const YamlReader& r, const YAML::Node& node) {
+  r.allow_keys(node, "bvh", {"builder", "leaf_size", "rebuild_ratio"});
+  render::UpdatePolicy policy;
+  if (node["builder"]) {
+    policy.build.builder = r.choice(node["builder"], "bvh.builder", {"bih", "sah"}) == "sah"
+                               ? render::BvhBuilder::sah
+                               : render::BvhBuilder::bih;
+  }
+  if (node["leaf_size"]) {
+    policy.build.leaf_size =
+        static_cast<int>(r.integer_in(node["leaf_size"], "bvh.leaf_size", 1, 64));
+  }
+  if (node["rebuild_ratio"]) {
+    policy.rebuild_ratio = r.number_in(node["rebuild_ratio"], "bvh.rebuild_ratio", 1.0, 1e6);
+  }
+  return policy;
+}
+
+CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::string& key) {
+  r.allow_keys(node, key, {"eye", "look_at", "up", "fov_deg", "auto_fit", "view_direction"});
+  CameraSpec cam;
+  cam.auto_fit =
+      node["auto_fit"] ? r.boolean(node["auto_fit"], child_key(key, "auto_fit")) : !node["eye"];
+  if (node["fov_deg"])
+    cam.fov_deg = r.number_in(node["fov_deg"], child_key(key, "fov_deg"), 1, 179);
+  if (node["up"]) cam.up = nonzero_vec3(r, node["up"], child_key(key, "up"));
+  if (cam.auto_fit) {
+    for (const char* k : {"eye", "look_at"}) {
+      if (node[k])
+        r.fail(node[k], child_key(key, k), "not allowed with auto_fit (give view_direction)");
+    }
+    if (node["view_direction"]) {
+      cam.view_direction =
+          nonzero_vec3(r, node["view_direction"], child_key(key, "view_direction"));
+    }
+    if (parallel(cam.view_direction, cam.up)) r.fail(node, key, "view_direction is parallel to up");
+    return cam;
+  }
+  if (node["view_direction"]) {
+    r.fail(node["view_direction"], child_key(key, "view_direction"), "needs auto_fit: true");
+  }
+  if (!node["eye"] || !node["look_at"])
+    r.fail(node, key, "an explicit camera needs eye and look_at");
+  cam.fixed.eye = vec3(r, node["eye"], child_key(key, "eye"));
+  cam.fixed.look_at = vec3(r, node["look_at"], child_key(key, "look_at"));
+  cam.fixed.up = cam.up;
+  cam.fixed.fov_deg = cam.fov_deg;
+  const render::Vec3d forward = cam.fixed.look_at - cam.fixed.eye;
+  if (dot(forward, forward) == 0) r.fail(node, key, "eye and look_at are the same point");
+  if (parallel(forward, cam.up)) r.fail(node, key, "the view direction is parallel to up");
+  return cam;
+}
+
+void parse_image(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
+  r.allow_keys(node, key, {"width", "height"});
+  if (node["width"])
+    s.width = static_cast<int>(r.integer_in(node["width"], child_key(key, "width"), 1, 16384));
+  if (node["height"]) {
+    s.height = static_cast<int>(r.integer_in(node["height"], child_key(key, "height"), 1, 16384));
+  }
+}
+
+void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
+  r.expect_list(node, key);
+  if (node.size() != 1) r.fail(node, key, "give exactly one light (a headlight)");
+  const std::string light_key = item_key(key, 0);
+  r.allow_keys(node[0], light_key, {"type", "ambient"});
+  if (node[0]["type"]) r.choice(node[0]["type"], child_key(light_key, "type"), {"headlight"});
+  if (node[0]["ambient"]) {
+    s.ambient =
+        static_cast<float>(r.number_in(node[0]["ambient"], child_key(light_key, "ambient"), 0, 1));
+  }
+}
+
+void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
+  const auto values = r.numbers(node["isovalues"], child_key(key, "isovalues"), 1,
+                                static_cast<std::size_t>(render::kMaxIsovalues));
+  const YAML::Node colors = node["colors"];
+  if (colors) {
+    r.expect_list(colors, child_key(key, "colors"));
+    if (colors.size() != values.size()) {
+      r.fail(colors, child_key(key, "colors"), "give one color per isovalue");
+    }
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    render::IsoSurface surface;
+    surface.value = static_cast<float>(values[i]);
+    surface.color = kDefaultColors[i % std::size(kDefaultColors)];
+    if (colors) {
+      const auto c = r.numbers(colors[i], item_key(child_key(key, "colors"), i), 3, 3);
+      for (std::size_t a = 0; a < 3; ++a) {
+        if (c[a] < 0 || c[a] > 1)
+          r.fail(colors[i], item_key(child_key(key, "colors"), i), "components must lie in [0, 1]");
+      }
+      surface.color = {static_cast<float>(c[0]), static_cast<float>(c[1]),
+                       static_cast<float>(c[2])};
+    }
+    s.surfaces.push_back(surface);
+  }
+}
+
+void parse_coloring(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
+  if (!node["color_by"]) {
+    for (const char* k : {"colormap", "color_range"}) {
+      if (node[k]) r.fail(node[k], child_key(key, k), "needs color_by");
+    }
+    return;
+  }
+  if (node["colors"]) r.fail(node["colors"], child_key(key, "colors"), "not allowed with color_by");
+  s.color_by = r.string(node["color_by"], child_key(key, "color_by"));
+  if (node["colormap"]) {
+    s.colormap_name = r.string(node["colormap"], child_key(key, "colormap"));
+    if (!render::find_colormap(s.colormap_name)) {
+      r.fail(node["colormap"], child_key(key, "colormap"),
+             "unknown colormap '" + s.colormap_name + "' (known: viridis, coolwarm, grayscale)");
+    }
+  }
+  if (const YAML::Node range = node["color_range"]) {
+    const std::string range_key = child_key(key, "color_range");
+    if (range.IsScalar()) {
+      r.choice(range, range_key, {"auto"});
+      return;
+    }
+    const auto lo_hi = r.numbers(range, range_key, 2, 2);
+    if (!(lo_hi[0] < lo_hi[1])) r.fail(range, range_key, "needs low < high");
+    s.color_range = {false, static_cast<float>(lo_hi[0]), static_cast<float>(lo_hi[1])};
+  }
+}
+
+void parse_background(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                      Scene& s) {
+  const auto c = r.numbers(node, key, 3, 4);
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    if (c[a] < 0 || c[a] > 1) r.fail(node, key, "components must lie in [0, 1]");
+    s.background[a] = static_cast<float>(c[a]);
+  }
+  if (c.size() == 3) s.background[3] = 1;
+}
+
+bool valid_scene_name(const std::string& name) {
+  for (char ch : name) {
+    const bool ok =
+        std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.';
+    if (!ok) return false;
+  }
+  return name.front() != '.';
+}
+
+Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                  const Trigger& default_trigger) {
+  r.allow_keys(node, key,
+               {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
+                "camera", "image", "background", "lights", "trigger"});
+  Scene s;
+  for (const char* k : {"name", "field", "isovalues"}) {
+    if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
+  }
+  s.name = r.string(node["name"], child_key(key, "name"));
+  if (!valid_scene_name(s.name)) {
+    r.fail(node["name"], child_key(key, "name"),
+           "use only letters, digits, '_', '-' and '.' (it names files)");
+  }
+  s.field = r.string(node["field"], child_key(key, "field"));
+  parse_surfaces(r, node, key, s);
+  parse_coloring(r, node, key, s);
+  if (node["image"]) parse_image(r, node["image"], child_key(key, "image"), s);
+  if (node["camera"]) s.camera = parse_camera(r, node["camera"], child_key(key, "camera"));
+  s.camera.auto_fit = s.camera.auto_fit || !node["camera"];
+  if (node["background"]) parse_background(r, node["background"], child_key(key, "background"), s);
+  if (node["lights"]) parse_lights(r, node["lights"], child_key(key, "lights"), s);
+  s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
+                              : default_trigger;
+  return s;
+}
+
+Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source) {
+  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite"});
+  Config config;
+  config.source = source;
+  if (root["output"]) config.output = parse_output(r, root["output"]);
+  const Trigger default_trigger =
+      root["trigger"] ? parse_trigger(r, root["trigger"], "trigger") : Trigger{};
+  if (root["bvh"]) config.bvh = parse_bvh(r, root["bvh"]);
+  if (root["nonfinite"]) {
+    config.nonfinite =
+        r.choice(root["nonfinite"], "nonfinite", {"error", "skip_tets"}) == "skip_tets"
+            ? render::NonFinitePolicy::skip_tets
+            : render::NonFinitePolicy::error;
+  }
+  const YAML::Node scenes = root["scenes"];
+  if (!scenes) r.fail(root, "scenes", "missing (required): list at least one scene");
+  r.expect_list(scenes, "scenes");
+  if (scenes.size() == 0) r.fail(scenes, "scenes", "list at least one scene");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const std::string key = item_key("scenes", i);
+    config.scenes.push_back(parse_scene(r, scenes[i], key, default_trigger));
+    if (!names.insert(config.scenes.back().name).second) {
+      r.fail(scenes[i]["name"], child_key(key, "name"), "duplicate scene name");
+    }
+  }
+  return config;
+}
+
+}  // namespace
+
+ParseResult parse_config(std::string_view yaml, const std::string& source) {
+  ParseResult result;
+  try {
+    const YAML::Node root = YAML::Load(std::string(yaml));
+    YamlReader reader(source);
+    if (!root.IsMap())
+      reader.fail(root, "(document)", "expected a map with output, trigger, scenes, bvh");
+    result.config = parse_root(reader, root, source);
+  } catch (const LocatedError& e) {
+    result.error = e.what();
+  } catch (const YAML::Exception& e) {
+    result.error = source + ":" + std::to_string(e.mark.line + 1) + ":" +
+                   std::to_string(e.mark.column + 1) + ": YAML syntax: " + e.msg;
+  } catch (const std::exception& e) {
+    result.error = source + ": " + e.what();
+  }
+  return result;
+}
+
+ParseResult load_config_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return {std::nullopt, path + ": cannot open the config file"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_config(text.str(), path);
+}
+
+}  // namespace tetray::config

@@ -1,0 +1,81 @@
+/* tetray's C API: the same calls as tetray/adaptor.hpp for C and, through ISO_C_BINDING, for
+ * Fortran (module tetray, adaptor/fortran/tetray.f90). A handle keeps non-owning views of the
+ * solver's arrays, set with tetray_set_mesh and tetray_set_field; they must stay valid until
+ * the tetray_execute call that reads them. Every call returns a tetray_status; the message of
+ * the last failed call on this thread is tetray_last_error(). Nothing aborts or throws. */
+#ifndef TETRAY_ADAPTOR_H
+#define TETRAY_ADAPTOR_H
+
+#include <mpi.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tetray_adaptor tetray_adaptor;
+
+/* Same values as tetray::StatusCode. */
+typedef enum {
+  TETRAY_OK = 0,
+  TETRAY_INVALID_ARGUMENT = 1,
+  TETRAY_CONFIG_ERROR = 2,
+  TETRAY_IO_ERROR = 3,
+  TETRAY_MPI_ERROR = 4,
+  TETRAY_INTERNAL_ERROR = 5,
+  TETRAY_NOT_INITIALIZED = 6
+} tetray_status;
+
+enum { TETRAY_FLOAT32 = 0, TETRAY_FLOAT64 = 1 }; /* scalar types */
+enum { TETRAY_INT32 = 0, TETRAY_INT64 = 1 };     /* index types */
+/* What changed since the last tetray_execute: a bitwise or of these. */
+enum {
+  TETRAY_CHANGED_GEOMETRY = 1,
+  TETRAY_CHANGED_TOPOLOGY = 2,
+  TETRAY_CHANGED_FIELDS = 4,
+  TETRAY_CHANGED_ALL = 7
+};
+
+/* What the last tetray_execute did. */
+typedef struct {
+  int rendered;
+  int scenes_rendered;
+  double seconds_blocked;
+  uint64_t tets_skipped;
+} tetray_report;
+
+/* Collective. On success *out is a new handle; on failure *out is NULL. */
+int tetray_create(MPI_Comm comm, const char* config_path, tetray_adaptor** out);
+int tetray_create_from_yaml(MPI_Comm comm, const char* yaml, tetray_adaptor** out);
+/* The same for a Fortran communicator handle (MPI_Comm_c2f / mpi_f08 %MPI_VAL). */
+int tetray_create_f(MPI_Fint comm, const char* config_path, tetray_adaptor** out);
+int tetray_create_from_yaml_f(MPI_Fint comm, const char* yaml, tetray_adaptor** out);
+
+/* Points: xyz interleaved (count points); displacement may be NULL. Tets: 4 indices each,
+ * 0-based; ghost (vtkGhostType per tet) and global_ids may be NULL. */
+int tetray_set_mesh(tetray_adaptor* a, const void* xyz, int xyz_type, int64_t point_count,
+                    const void* displacement, int displacement_type, const void* connectivity,
+                    int index_type, int64_t tet_count, const uint8_t* ghost,
+                    const int64_t* global_ids);
+/* Adds the point field `name` or replaces its view. */
+int tetray_set_field(tetray_adaptor* a, const char* name, const void* values, int type,
+                     int64_t count);
+int tetray_clear_fields(tetray_adaptor* a);
+
+/* Collective. `changes`: TETRAY_CHANGED_* bits. */
+int tetray_execute(tetray_adaptor* a, int64_t step, double time, int changes);
+int tetray_get_report(const tetray_adaptor* a, tetray_report* report);
+
+/* Collective; drains the image writer. tetray_destroy finalizes if needed, then frees. */
+int tetray_finalize(tetray_adaptor* a);
+void tetray_destroy(tetray_adaptor* a);
+
+/* The message of the last failed call on this thread ("" when none). */
+const char* tetray_last_error(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TETRAY_ADAPTOR_H */

@@ -1,0 +1,38 @@
+// The files of DESIGN §3 on the root rank: images `<dir>/<scene>/<scene>_<step>.exr|png`
+// (written atomically by render/image_write), the Cinema database `<dir>/<scene>.cdb/data.csv`
+// and the timing log `<dir>/tetray_log.csv`. Every function returns an error message (empty on
+// success); a failed append leaves the file as it was, so nothing already written is damaged.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "render/framebuffer.hpp"
+#include "step_record.hpp"
+
+namespace tetray {
+
+std::string image_path(const std::string& directory, const std::string& scene, std::int64_t step,
+                       const char* extension);
+std::string log_path(const std::string& directory);
+std::string cinema_path(const std::string& directory, const std::string& scene);
+
+// Creates the directories and starts the log and the Cinema tables with their headers.
+std::string prepare_outputs(const config::Output& output, const std::vector<config::Scene>& scenes);
+
+// Appends `line` and a newline; on a short write truncates back to the old length.
+std::string append_line(const std::string& path, const std::string& line);
+
+// One composited image with what the writer needs to file it.
+struct ImageJob {
+  render::Framebuffer image;
+  float background[4] = {0, 0, 0, 0};
+  StepRecord record;
+};
+
+// Background, image files, Cinema row, log row; fills the record's writer timings and hits.
+std::string write_image_job(const config::Output& output, ImageJob& job);
+
+}  // namespace tetray

@@ -1,0 +1,14 @@
+// What the figures were measured on: CPU model, cores, and the SIMD level the kernels were
+// compiled for.
+#pragma once
+
+#include "bench_results.hpp"
+
+namespace tetray::bench {
+
+MachineInfo describe_machine();
+
+// User + system CPU time of this process so far.
+double process_cpu_seconds();
+
+}  // namespace tetray::bench

@@ -1,0 +1,28 @@
+#include "bench_options.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace tetray::bench {
+
+BenchOptions parse_options(int argc, char** argv, int& exit_code) {
+  BenchOptions options;
+  CLI::App app{"tetray-bench: gyroid-twist benchmark of tetray against VTK contour + Embree"};
+  app.add_option("--sizes", options.sizes, "gyroid-twist resolutions n, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--threads", options.threads, "threads (one oneTBB arena for everything)")
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--json", options.json_path, "write the figures as JSON to this file");
+  app.add_option("--size-px", options.size_px, "image width and height in pixels")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--steps", options.steps, "time steps t = 0, 0.1, ... for the refit figures")
+      ->check(CLI::Range(1, 100));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    exit_code = app.exit(error);
+  }
+  return options;
+}
+
+}  // namespace tetray::bench

@@ -1,0 +1,21 @@
+// Command line of tetray-bench.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tetray::bench {
+
+struct BenchOptions {
+  std::vector<int> sizes{32, 56, 88};  // gyroid-twist resolutions n (6 n^3 tets)
+  int threads = 2;
+  std::string json_path;  // empty: no JSON
+  int size_px = 1024;     // square image
+  int steps = 5;          // time steps t = 0, 0.1, ... for the refit figures
+};
+
+// Parses argv; on --help or an error prints the message and returns the exit code to leave
+// with in `exit_code`, else leaves it untouched.
+BenchOptions parse_options(int argc, char** argv, int& exit_code);
+
+}  // namespace tetray::bench

@@ -1,0 +1,175 @@
+#include "bench_reference_embree.hpp"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "bench_scene.hpp"
+#include "bench_timing.hpp"
+
+namespace tetray::bench {
+namespace {
+
+using Device = std::unique_ptr<RTCDeviceTy, decltype(&rtcReleaseDevice)>;
+using Scene = std::unique_ptr<RTCSceneTy, decltype(&rtcReleaseScene)>;
+
+constexpr int kTile = 4;  // 4x4 pixels per rtcIntersect16 packet
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+Device make_device(int threads) {
+  const std::string config = "threads=" + std::to_string(threads);
+  Device device(rtcNewDevice(config.c_str()), &rtcReleaseDevice);
+  if (!device) throw std::runtime_error("rtcNewDevice failed");
+  return device;
+}
+
+// An uncommitted scene holding the triangles through shared buffers (no copy).
+Scene make_scene(RTCDevice device, const TriangleSoup& triangles) {
+  Scene scene(rtcNewScene(device), &rtcReleaseScene);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                             triangles.xyz.data(), 0, 3 * sizeof(float), triangles.vertex_count());
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                             triangles.indices.data(), 0, 3 * sizeof(std::uint32_t),
+                             triangles.triangle_count());
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene.get(), geometry);
+  rtcReleaseGeometry(geometry);
+  return scene;
+}
+
+struct PixelRay {
+  render::Vec3f dir;
+  float depth_per_t;  // view depth = t * dot(dir, forward)
+};
+
+// The image Embree's trace writes: shaded color as tetray's frame does, and depth.
+struct EmbreeImage {
+  render::Camera camera;
+  render::CameraFrame frame;
+  render::Vec3f eye;
+  render::Rgb color = bench_surface().color;
+  float ambient = render::TraceOptions{}.ambient;
+  std::vector<float> rgba;
+  std::vector<float> depth;
+
+  explicit EmbreeImage(const render::Camera& c)
+      : camera(c),
+        frame(render::make_frame(c)),
+        eye(static_cast<render::Vec3f>(c.eye)),
+        rgba(4 * static_cast<std::size_t>(c.width) * c.height, 0.0f),
+        depth(static_cast<std::size_t>(c.width) * c.height, kInfinity) {}
+
+  PixelRay ray(int i, int j) const {
+    const render::Vec3d dir = render::pixel_direction(frame, camera, i, j);
+    return {static_cast<render::Vec3f>(dir), static_cast<float>(dot(dir, frame.forward))};
+  }
+
+  // Two-sided Lambert headlight: color * (ambient + (1 - ambient) |cos|).
+  void shade(int i, int j, const PixelRay& ray, float t, render::Vec3f normal) {
+    const std::size_t pixel = static_cast<std::size_t>(j) * camera.width + i;
+    const float cosine = std::abs(dot(normalize(normal), ray.dir));
+    const float light = ambient + (1.0f - ambient) * cosine;
+    rgba[4 * pixel + 0] = light * color.r;
+    rgba[4 * pixel + 1] = light * color.g;
+    rgba[4 * pixel + 2] = light * color.b;
+    rgba[4 * pixel + 3] = 1.0f;
+    depth[pixel] = t * ray.depth_per_t;
+  }
+};
+
+void trace_single_rays(RTCScene scene, EmbreeImage& image) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.camera.height), [&](const auto& rows) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (int j = rows.begin(); j < rows.end(); ++j)
+      for (int i = 0; i < image.camera.width; ++i) {
+        const PixelRay ray = image.ray(i, j);
+        RTCRayHit hit{};
+        hit.ray = {image.eye.x, image.eye.y, image.eye.z, 0.0f, ray.dir.x, ray.dir.y,
+                   ray.dir.z,   0.0f,        kInfinity,   ~0u,  0,         0};
+        hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &hit);
+        if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+          image.shade(i, j, ray, hit.ray.tfar, {hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z});
+      }
+  });
+}
+
+void trace_tile(RTCScene scene, RTCIntersectContext& context, EmbreeImage& image, int i0, int j0) {
+  alignas(64) RTCRayHit16 packet{};
+  alignas(64) int valid[16];
+  PixelRay rays[16];
+  for (int k = 0; k < 16; ++k) {
+    const int i = i0 + k % kTile, j = j0 + k / kTile;
+    valid[k] = i < image.camera.width && j < image.camera.height ? -1 : 0;
+    if (!valid[k]) continue;
+    rays[k] = image.ray(i, j);
+    packet.ray.org_x[k] = image.eye.x;
+    packet.ray.org_y[k] = image.eye.y;
+    packet.ray.org_z[k] = image.eye.z;
+    packet.ray.dir_x[k] = rays[k].dir.x;
+    packet.ray.dir_y[k] = rays[k].dir.y;
+    packet.ray.dir_z[k] = rays[k].dir.z;
+    packet.ray.tfar[k] = kInfinity;
+    packet.ray.mask[k] = ~0u;
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, scene, &context, &packet);
+  for (int k = 0; k < 16; ++k)
+    if (valid[k] && packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID)
+      image.shade(i0 + k % kTile, j0 + k / kTile, rays[k], packet.ray.tfar[k],
+                  {packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]});
+}
+
+void trace_packets(RTCScene scene, EmbreeImage& image) {
+  const int tile_rows = (image.camera.height + kTile - 1) / kTile;
+  tbb::parallel_for(tbb::blocked_range<int>(0, tile_rows), [&](const auto& rows) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (int row = rows.begin(); row < rows.end(); ++row)
+      for (int i0 = 0; i0 < image.camera.width; i0 += kTile)
+        trace_tile(scene, context, image, i0, row * kTile);
+  });
+}
+
+// Best time of one trace mode after a warm-up, each repetition into a fresh image.
+template <typename Trace>
+double trace_ms(RTCScene scene, const render::Camera& camera, Trace trace) {
+  EmbreeImage warm_up(camera);
+  trace(scene, warm_up);
+  return best_ms(kRepetitions, [&] {
+    EmbreeImage image(camera);
+    trace(scene, image);
+  });
+}
+
+}  // namespace
+
+EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
+                            int threads) {
+  const Device device = make_device(threads);
+  Scene scene(nullptr, &rtcReleaseScene);
+  EmbreeRun run;
+  run.build_ms = best_ms(
+      kRepetitions, [&] { scene = make_scene(device.get(), triangles); },
+      [&] { rtcCommitScene(scene.get()); });
+  const double single_ms = trace_ms(scene.get(), camera, trace_single_rays);
+  const double packet_ms = trace_ms(scene.get(), camera, trace_packets);
+  run.trace_ms = std::min(single_ms, packet_ms);
+  run.trace_mode = single_ms <= packet_ms ? "rtcIntersect1" : "rtcIntersect16";
+  EmbreeImage image(camera);
+  trace_packets(scene.get(), image);
+  run.depth = std::move(image.depth);
+  return run;
+}
+
+}  // namespace tetray::bench

@@ -1,0 +1,110 @@
+#include "bench_refit.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "bench_bandwidth.hpp"
+#include "bench_scene.hpp"
+#include "bench_timing.hpp"
+
+namespace tetray::bench {
+namespace {
+
+constexpr render::StepChanges kFieldOnly{false, true, false};
+constexpr render::StepChanges kGeometryAndField{true, true, false};
+
+struct StepArrays {
+  std::vector<double> points;
+  std::vector<double> field;
+};
+
+StepArrays step_arrays(const BoxMesh& reference, double t) {
+  StepArrays arrays;
+  deform_gyroid_twist(reference, t, arrays.points, arrays.field);
+  return arrays;
+}
+
+render::UpdateResult update(render::TetVolume& volume, render::Bvh& bvh,
+                            const std::vector<double>& points, const std::vector<double>& field,
+                            render::StepChanges changes, const render::UpdatePolicy& policy = {}) {
+  return render::update_volume(volume, bvh, point_source(points), field_source(field), changes,
+                               policy);
+}
+
+// A policy whose threshold every tree passes: the step takes the rebuild path.
+render::UpdatePolicy always_rebuild() {
+  render::UpdatePolicy policy;
+  policy.rebuild_ratio = 0.0;
+  return policy;
+}
+
+double median(std::vector<double> values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// The three update kinds on the step t = 0.1, each the best of a few runs, with their bounds.
+// The rebuild figure is a whole step on which the policy rebuilds (ingest, refit, build).
+void measure_updates(const GyroidTwist& start, RefitFigures& figures) {
+  render::TetVolume volume;
+  render::Bvh bvh;
+  load_scene(start, volume, bvh);
+  const StepArrays next = step_arrays(start.mesh, kTimeStep);
+
+  figures.field_only_ms = best_ms(
+      kRepetitions, [&] { update(volume, bvh, start.mesh.points, next.field, kFieldOnly); });
+  figures.geometry_ms = best_ms(
+      kRepetitions, [&] { update(volume, bvh, next.points, next.field, kGeometryAndField); });
+  render::UpdateResult rebuilt;
+  figures.rebuild_ms = best_ms(kRepetitions, [&] {
+    rebuilt = update(volume, bvh, next.points, next.field, kGeometryAndField, always_rebuild());
+  });
+  if (rebuilt.kind != render::BvhUpdateKind::rebuild)
+    throw std::runtime_error("the policy did not rebuild at threshold 0");
+
+  const UpdateTraffic field_only = field_only_traffic(volume, bvh, field_source(next.field));
+  const UpdateTraffic geometry =
+      geometry_traffic(volume, bvh, point_source(next.points), field_source(next.field));
+  figures.bytes_field_only = field_only.total();
+  figures.bytes_geometry = geometry.total();
+  figures.bound_field_only_ms = memcpy_bound_ms(field_only);
+  figures.bound_geometry_ms = memcpy_bound_ms(geometry);
+}
+
+// The in-situ loop: each new step is ingested (geometry + field, the policy deciding between
+// refit and rebuild) and traced at 16x16. Ends with the strong deformation.
+void measure_steps(const GyroidTwist& start, const render::Camera& camera, int steps,
+                   RefitFigures& figures) {
+  render::TetVolume volume;
+  render::Bvh bvh;
+  load_scene(start, volume, bvh);
+  std::vector<double> step_ms;
+  render::UpdateResult last;
+  for (int s = 1; s < steps; ++s) {
+    const StepArrays arrays = step_arrays(start.mesh, s * kTimeStep);
+    step_ms.push_back(time_ms([&] {
+      last = update(volume, bvh, arrays.points, arrays.field, kGeometryAndField);
+      trace_scene(volume, bvh, camera, render::PacketSize::p16x16);
+    }));
+  }
+  figures.step_total_ms = step_ms.empty() ? 0.0 : median(step_ms);
+  figures.quality_ratio_after_steps = last.quality_ratio;
+
+  const render::UpdateResult strong =
+      update(volume, bvh, strong_twist(start.mesh), start.field, kGeometryAndField);
+  figures.strong_deformation_kind = render::to_string(strong.kind);
+  figures.strong_deformation_ratio = strong.quality_ratio;
+}
+
+}  // namespace
+
+RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera, int steps) {
+  RefitFigures figures;
+  measure_updates(start, figures);
+  measure_steps(start, camera, steps, figures);
+  return figures;
+}
+
+}  // namespace tetray::bench

@@ -1,0 +1,16 @@
+// Issue 4's figures for one scene: the cost of bringing a new time step into the renderer
+// (field only, geometry + field, rebuild) next to its memcpy bound, the per-step in-situ total,
+// and the rebuild policy's decisions over the gyroid-twist steps and after a strong deformation.
+#pragma once
+
+#include "bench_results.hpp"
+#include "render/camera.hpp"
+#include "tetray/box_mesh.hpp"
+
+namespace tetray::bench {
+
+// `start` is the scene at t = 0, where the twist is zero: its points are the reference that
+// later steps deform. `steps` counts t = 0, 0.1, ... including the start.
+RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera, int steps);
+
+}  // namespace tetray::bench

@@ -1,0 +1,53 @@
+#include "bench_targets.hpp"
+
+#include <cstdio>
+
+namespace tetray::bench {
+namespace {
+
+// printf-style formatting into a string (GCC 12 has no std::format).
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+}  // namespace
+
+std::vector<TargetCheck> check_targets(const SceneFigures& s) {
+  const double trace16_ms = s.packet(render::PacketSize::p16x16).trace_ms;
+  const double mrays = s.packet(render::PacketSize::p16x16).mrays_per_s;
+  const double vs_embree = trace16_ms / s.ref.embree_trace_ms;
+  const double bih_mtets_per_s = static_cast<double>(s.tets) / (s.tetray.build_bih_ms * 1e3);
+  const double sah_vs_bih = s.tetray.build_sah_ms / s.tetray.build_bih_ms;
+  const double geometry_vs_bound = s.refit.geometry_ms / s.refit.bound_geometry_ms;
+  const double field_vs_bound = s.refit.field_only_ms / s.refit.bound_field_only_ms;
+  const double step_speedup = s.refit.ref_step_total_ms / s.refit.step_total_ms;
+  const bool rebuilt = s.refit.strong_deformation_kind == "rebuild";
+  return {
+      {"trace 16x16", format("%.1f Mrays/s", mrays), ">= 40 Mrays/s", mrays >= 40},
+      {"trace 16x16 / Embree trace", format("%.2fx", vs_embree), "<= 1.5x", vs_embree <= 1.5},
+      {"BIH build", format("%.1f M tets/s", bih_mtets_per_s), ">= 20 M tets/s",
+       bih_mtets_per_s >= 20},
+      {"SAH build / BIH build", format("%.2fx", sah_vs_bih), "<= 5x", sah_vs_bih <= 5},
+      {"BVH memory", format("%.1f B/tet", s.tetray.bvh_bytes_per_tet), "< 20 B/tet",
+       s.tetray.bvh_bytes_per_tet < 20},
+      {"hit/miss agreement", format("%.4f%%", 100 * s.ref.depth_agree_fraction), ">= 99.9%",
+       s.ref.depth_agree_fraction >= 0.999},
+      {"median rel depth diff", format("%.2e", s.ref.depth_median_rel_diff), "< 1e-5",
+       s.ref.depth_median_rel_diff < 1e-5},
+      {"geometry+field refit / bound", format("%.2fx", geometry_vs_bound), "<= 2x",
+       geometry_vs_bound <= 2},
+      {"field-only refit / bound", format("%.2fx", field_vs_bound), "<= 1.5x",
+       field_vs_bound <= 1.5},
+      {"reference step / in-situ step", format("%.1fx faster", step_speedup), ">= 5x faster",
+       step_speedup >= 5},
+      {"quality ratio after steps", format("%.3f", s.refit.quality_ratio_after_steps), "< 1.2",
+       s.refit.quality_ratio_after_steps < 1.2},
+      {"strong deformation",
+       s.refit.strong_deformation_kind + format(" (ratio %.2f)", s.refit.strong_deformation_ratio),
+       "rebuild", rebuilt},
+  };
+}
+
+}  // namespace tetray::bench

@@ -1,0 +1,50 @@
+// Wall-clock timing for the benchmark. Every figure is the best of a few repetitions after a
+// warm-up: on a shared machine the minimum is the least disturbed estimate of the cost, and the
+// same rule applies to tetray and to the references so their ratios stay fair.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+namespace tetray::bench {
+
+inline constexpr int kRepetitions = 3;
+
+class Stopwatch {
+ public:
+  double elapsed_ms() const {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point start_ = Clock::now();
+};
+
+template <typename Work>
+double time_ms(Work&& work) {
+  const Stopwatch watch;
+  work();
+  return watch.elapsed_ms();
+}
+
+// Best of `repetitions` timed runs of `work`; `prepare` runs untimed before each (e.g. to
+// restore an input that `work` consumes).
+template <typename Prepare, typename Work>
+double best_ms(int repetitions, Prepare&& prepare, Work&& work) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < repetitions; ++r) {
+    prepare();
+    best = std::min(best, time_ms(work));
+  }
+  return best;
+}
+
+template <typename Work>
+double best_ms(int repetitions, Work&& work) {
+  return best_ms(
+      repetitions, [] {}, work);
+}
+
+}  // namespace tetray::bench

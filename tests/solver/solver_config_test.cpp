@@ -1,0 +1,182 @@
+// The `solver:` section of tetray-minisolver's YAML: a full section parses to the settings it
+// spells out, the stiff region adds a scaled material to both physics, and each kind of mistake
+// (unknown key, wrong type, impossible value, missing part) is an error naming the key and line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "minisolver/solver_config.hpp"
+
+namespace minisolver {
+namespace {
+
+const std::string kValid = R"(solver:
+  mesh: {kind: box, cells: [4, 3, 2], lo: [-1, -1, -1], hi: [1, 2, 3], jitter: 0.15}
+  partition: {weights: [1, 2]}
+  stiff_region: {axis: y, above: 0.5, contrast: 1.0e6}
+  time: {steps: 7, dt: 0.003}
+  heat:
+    scheme: backward_euler
+    conductivity: 2.5
+    capacity: 0.5
+    hot_faces: [x_max, z_min]
+    hot_temperature: 3.0
+  elasticity:
+    scheme: central_difference
+    young: 210.0
+    poisson: 0.25
+    density: 7.8
+    body_force: [0, -9.8, 0]
+    clamped_faces: [y_min]
+    allow_unstable: true
+  cg: {rtol: 1.0e-9, max_iterations: 123}
+)";
+
+// Parses the solver section of `yaml`; the error is empty on success.
+std::string parse(const std::string& yaml, SolverConfig& config) {
+  std::string error;
+  const bool ok = parse_solver_config(YAML::Load(yaml)["solver"], config, error);
+  EXPECT_EQ(ok, error.empty()) << error;
+  return error;
+}
+
+// The 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  EXPECT_NE(at, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+// kValid with its first `from` replaced by `to`.
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = kValid;
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+// The error for `yaml` starts with "key (line N):", N the line holding `where`, and says `what`.
+void expect_error(const std::string& yaml, const std::string& key, const std::string& where,
+                  const std::string& what) {
+  SolverConfig config;
+  const std::string error = parse(yaml, config);
+  const std::string expected = key + " (line " + std::to_string(line_of(yaml, where)) + "): ";
+  EXPECT_EQ(error.rfind(expected, 0), 0u) << error << "\nexpected it to start with " << expected;
+  EXPECT_NE(error.find(what), std::string::npos) << error;
+}
+
+TEST(SolverConfig, ValidSectionParsesToTheSettingsItSpellsOut) {
+  SolverConfig c;
+  ASSERT_EQ(parse(kValid, c), "");
+  EXPECT_EQ(c.mesh.kind, MeshKind::box);
+  EXPECT_EQ(c.mesh.cells, (std::array<int, 3>{4, 3, 2}));
+  EXPECT_EQ(c.mesh.lo, (Vec3{-1, -1, -1}));
+  EXPECT_EQ(c.mesh.hi, (Vec3{1, 2, 3}));
+  EXPECT_EQ(c.mesh.jitter, 0.15);
+  EXPECT_EQ(c.partition_weights, (std::vector<double>{1, 2}));
+  EXPECT_EQ(c.steps, 7);
+  EXPECT_EQ(c.dt, 0.003);
+  ASSERT_TRUE(c.heat && c.elasticity);
+
+  const HeatSetup& heat = c.heat->setup;
+  EXPECT_EQ(heat.scheme, ThetaScheme::backward_euler);
+  EXPECT_EQ(heat.materials.front().conductivity, 2.5);
+  EXPECT_EQ(heat.materials.front().capacity, 0.5);
+  EXPECT_EQ(heat.fixed_faces, x_max | z_min);
+  EXPECT_EQ(c.heat->hot_temperature, 3.0);
+
+  const ElasticSetup& elastic = c.elasticity->setup;
+  EXPECT_EQ(elastic.scheme, ElasticScheme::central_difference);
+  EXPECT_EQ(elastic.materials.front().young, 210.0);
+  EXPECT_EQ(elastic.materials.front().poisson, 0.25);
+  EXPECT_EQ(elastic.materials.front().density, 7.8);
+  EXPECT_EQ(c.elasticity->body_force, (Vec3{0, -9.8, 0}));
+  EXPECT_EQ(elastic.fixed_faces, y_min);
+  EXPECT_TRUE(elastic.allow_unstable);
+
+  // The time and cg sections reach both physics.
+  for (const auto& [dt, cg] : {std::pair{heat.dt, heat.cg}, std::pair{elastic.dt, elastic.cg}}) {
+    EXPECT_EQ(dt, c.dt);
+    EXPECT_EQ(cg.rtol, 1e-9);
+    EXPECT_EQ(cg.max_iterations, 123);
+  }
+}
+
+TEST(SolverConfig, StiffRegionAddsMaterialZeroWithItsStiffnessScaled) {
+  SolverConfig c;
+  ASSERT_EQ(parse(kValid, c), "");
+  ASSERT_TRUE(c.stiff_region);
+  EXPECT_EQ(c.stiff_region->axis, 1);
+  EXPECT_EQ(c.stiff_region->above, 0.5);
+  const double contrast = c.stiff_region->contrast;
+  EXPECT_EQ(contrast, 1e6);
+
+  const auto& heat = c.heat->setup.materials;
+  ASSERT_EQ(heat.size(), 2u);
+  EXPECT_EQ(heat[1].conductivity, contrast * heat[0].conductivity);
+  EXPECT_EQ(heat[1].capacity, heat[0].capacity);
+
+  const auto& elastic = c.elasticity->setup.materials;
+  ASSERT_EQ(elastic.size(), 2u);
+  EXPECT_EQ(elastic[1].young, contrast * elastic[0].young);
+  EXPECT_EQ(elastic[1].poisson, elastic[0].poisson);
+  EXPECT_EQ(elastic[1].density, elastic[0].density);
+}
+
+TEST(SolverConfig, WithoutStiffRegionEachPhysicsHasOneMaterial) {
+  SolverConfig c;
+  const std::string yaml = edited("  stiff_region: {axis: y, above: 0.5, contrast: 1.0e6}\n", "");
+  ASSERT_EQ(parse(yaml, c), "");
+  EXPECT_FALSE(c.stiff_region);
+  EXPECT_EQ(c.heat->setup.materials.size(), 1u);
+  EXPECT_EQ(c.elasticity->setup.materials.size(), 1u);
+}
+
+TEST(SolverConfig, UnknownKeysAreNamedWithTheirLine) {
+  expect_error(edited("scheme: backward_euler", "schem: backward_euler"), "solver.heat.schem",
+               "schem:", "unknown key");
+  expect_error(edited("  cg:", "  gc:"), "solver.gc", "gc:", "unknown key");
+  expect_error(edited("contrast: 1.0e6", "ratio: 1.0e6"), "solver.stiff_region.ratio", "ratio:",
+               "unknown key");
+}
+
+TEST(SolverConfig, WrongTypesAreNamedWithTheirLine) {
+  expect_error(edited("steps: 7", "steps: many"), "solver.time.steps", "many",
+               "expected an integer");
+  expect_error(edited("young: 210.0", "young: [210]"), "solver.elasticity.young", "[210]",
+               "expected a number");
+  expect_error(edited("cells: [4, 3, 2]", "cells: [4, 3]"), "solver.mesh.cells", "[4, 3]",
+               "expected a list of 3");
+  expect_error(edited("allow_unstable: true", "allow_unstable: maybe"),
+               "solver.elasticity.allow_unstable", "maybe", "expected true or false");
+}
+
+TEST(SolverConfig, ImpossibleValuesAreNamedWithTheirLine) {
+  expect_error(edited("dt: 0.003", "dt: -0.003"), "solver.time.dt", "-0.003", "must be > 0");
+  expect_error(edited("poisson: 0.25", "poisson: 0.5"), "solver.elasticity.poisson", "0.5",
+               "must lie in (-1, 0.5)");
+  expect_error(edited("density: 7.8", "density: 0"), "solver.elasticity.density", "density: 0",
+               "must be > 0");
+  expect_error(edited("scheme: central_difference", "scheme: leapfrog"),
+               "solver.elasticity.scheme", "leapfrog", "'leapfrog' is not one of");
+  expect_error(edited("contrast: 1.0e6", "contrast: -1"), "solver.stiff_region.contrast",
+               "contrast: -1", "must be > 0");
+  expect_error(edited("axis: y", "axis: w"), "solver.stiff_region.axis", "axis: w",
+               "is not one of x, y, z");
+}
+
+TEST(SolverConfig, AStiffRegionMustSayWhereAndHowStiff) {
+  expect_error(edited("axis: y, above: 0.5, ", "axis: y, "), "solver.stiff_region.above",
+               "stiff_region:", "missing");
+}
+
+// The README's demo keeps a solver section this parser accepts.
+TEST(SolverConfig, DemoConfigParses) {
+  const auto path = std::filesystem::path(TETRAY_SOURCE_DIR) / "configs" / "demo.yaml";
+  SolverConfig c;
+  std::string error;
+  EXPECT_TRUE(parse_solver_config(YAML::LoadFile(path.string())["solver"], c, error)) << error;
+}
+
+}  // namespace
+}  // namespace minisolver
