@@ -1,6 +1,10 @@
 #include "render/mesh_check.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "render/point_read.hpp"
@@ -8,40 +12,48 @@
 namespace tetray::render {
 namespace {
 
-// Flags points with a non-finite coordinate (after displacement) or value; counts both kinds.
-std::vector<std::uint8_t> flag_nonfinite_points(const PointSource& points, const FieldSource& field,
-                                                MeshCheck& check, std::size_t& first_bad_point,
-                                                std::size_t& first_bad_value) {
-  std::vector<std::uint8_t> bad(points.count, 0);
-  first_bad_point = first_bad_value = points.count;
-  with_points(points, [&](const auto* xyz, const auto* disp) {
-    for (std::size_t i = 0; i < points.count; ++i) {
-      double p[3];
-      point_position(xyz, disp, i, p);
-      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) continue;
-      bad[i] = 1;
-      ++check.nonfinite_points;
-      first_bad_point = std::min(first_bad_point, i);
-    }
-  });
-  if (field.values) {
-    with_scalar(field.kind, [&](auto tag) {
-      const auto* f = static_cast<const decltype(tag)*>(field.values);
-      for (std::size_t i = 0; i < field.count; ++i) {
-        if (std::isfinite(f[i])) continue;
-        bad[i] = 1;
-        ++check.nonfinite_values;
-        first_bad_value = std::min(first_bad_value, i);
-      }
-    });
-  }
-  return bad;
+// How many of [0, n) satisfy a predicate, and the first that does (n when none): the shape of
+// every check here, run in parallel.
+struct Findings {
+  std::uint64_t count = 0;
+  std::size_t first = std::numeric_limits<std::size_t>::max();
+};
+
+template <typename Pred>
+Findings find_all(std::size_t n, Pred&& found) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n), Findings{},
+      [&](const auto& block, Findings f) {
+        for (std::size_t i = block.begin(); i != block.end(); ++i) {
+          if (!found(i)) continue;
+          ++f.count;
+          f.first = std::min(f.first, i);
+        }
+        return f;
+      },
+      [](Findings a, const Findings& b) {
+        return Findings{a.count + b.count, std::min(a.first, b.first)};
+      });
 }
 
-std::string describe(const char* what, std::size_t index, std::uint64_t count) {
+bool finite_point(const PointSource& points, std::size_t i) {
+  return with_points(points, [&](const auto* xyz, const auto* disp) {
+    double p[3];
+    point_position(xyz, disp, i, p);
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  });
+}
+
+bool finite_value(const FieldSource& field, std::size_t i) {
+  return with_scalar(field.kind, [&](auto tag) {
+    return static_cast<bool>(std::isfinite(static_cast<const decltype(tag)*>(field.values)[i]));
+  });
+}
+
+std::string describe(const char* what, const Findings& f) {
   std::ostringstream out;
-  out << what << " at point " << index << " (" << count << " such point" << (count == 1 ? "" : "s")
-      << "); policy is 'error'";
+  out << what << " at point " << f.first << " (" << f.count << " such point"
+      << (f.count == 1 ? "" : "s") << "); policy is 'error'";
   return out.str();
 }
 
@@ -64,31 +76,40 @@ MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& poin
     return check;
   }
   const auto n = static_cast<std::int64_t>(points.count);
-  for (std::size_t i = 0; i < tets.size(); ++i) {
-    if (tets[i] >= 0 && tets[i] < n) continue;
-    if (check.tets_out_of_range++ == 0) {
-      check.error = "tet " + std::to_string(i / 4) + " has point index " + std::to_string(tets[i]) +
-                    " outside [0, " + std::to_string(n) + ")";
-    }
-  }
-  if (!check.error.empty()) return check;
-  std::size_t first_bad_point, first_bad_value;
-  const auto bad = flag_nonfinite_points(points, field, check, first_bad_point, first_bad_value);
-  if (policy == NonFinitePolicy::error) {
-    if (check.nonfinite_points)
-      check.error = describe("non-finite coordinate", first_bad_point, check.nonfinite_points);
-    else if (check.nonfinite_values)
-      check.error = describe("non-finite field value", first_bad_value, check.nonfinite_values);
+  const Findings out_of_range =
+      find_all(tets.size(), [&](std::size_t i) { return tets[i] < 0 || tets[i] >= n; });
+  check.tets_out_of_range = out_of_range.count;
+  if (out_of_range.count) {
+    const std::size_t i = out_of_range.first;
+    check.error = "tet " + std::to_string(i / 4) + " has point index " + std::to_string(tets[i]) +
+                  " outside [0, " + std::to_string(n) + ")";
     return check;
   }
-  for (std::size_t t = 0; t < tet_count; ++t) {
-    for (int k = 0; k < 4; ++k) {
-      if (!bad[tets[4 * t + k]]) continue;
-      keep[t] = 0;
-      ++check.tets_skipped;
-      break;
+  const Findings bad_points =
+      find_all(points.count, [&](std::size_t i) { return !finite_point(points, i); });
+  const Findings bad_values =
+      field.values ? find_all(field.count, [&](std::size_t i) { return !finite_value(field, i); })
+                   : Findings{};
+  check.nonfinite_points = bad_points.count;
+  check.nonfinite_values = bad_values.count;
+  if (policy == NonFinitePolicy::error) {
+    if (bad_points.count) {
+      check.error = describe("non-finite coordinate", bad_points);
+    } else if (bad_values.count) {
+      check.error = describe("non-finite field value", bad_values);
     }
+    return check;
   }
+  if (!bad_points.count && !bad_values.count) return check;
+  auto bad = [&](std::int64_t p) {
+    const auto i = static_cast<std::size_t>(p);
+    return !finite_point(points, i) || (field.values && !finite_value(field, i));
+  };
+  check.tets_skipped = find_all(tet_count, [&](std::size_t t) {
+                         const std::int64_t* v = &tets[4 * t];
+                         keep[t] = !(bad(v[0]) || bad(v[1]) || bad(v[2]) || bad(v[3]));
+                         return !keep[t];
+                       }).count;
   return check;
 }
 
