@@ -274,7 +274,8 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     options.ambient = s.config.ambient;
     if (s.colormap != nullptr) {
       const Stopwatch watch;
-      convert_color_field(field_or_empty(fields, s.config.color_by), volume.volume().color_field);
+      render::load_color_field(volume.volume(),
+                               field_source(field_or_empty(fields, s.config.color_by)));
       render::ValueRange range =
           s.config.color_range.automatic
               ? ranges_[1 + 4 * k + 3]

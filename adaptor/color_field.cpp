@@ -10,22 +10,11 @@ std::span<const T> values_of(const FieldView& field) {
   return {static_cast<const T*>(field.values), field.count};
 }
 
-template <typename T>
-void convert(std::span<const T> values, std::vector<float>& out) {
-  out.resize(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) out[i] = static_cast<float>(values[i]);
-}
-
 }  // namespace
 
 render::ValueRange local_field_range(const FieldView& field) {
   if (field.type == ScalarType::float32) return render::local_range(values_of<float>(field));
   return render::local_range(values_of<double>(field));
-}
-
-void convert_color_field(const FieldView& field, std::vector<float>& out) {
-  if (field.type == ScalarType::float32) return convert(values_of<float>(field), out);
-  convert(values_of<double>(field), out);
 }
 
 void usable_color_range(render::ValueRange& range) {
