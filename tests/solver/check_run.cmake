@@ -4,10 +4,12 @@
 # trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
 # else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv.
 # A refused run must write no image. Every failed check is listed, then the test fails.
+cmake_minimum_required(VERSION 3.25)
 set(failures "")
-macro(fail text)
-  list(APPEND failures "${text}")
-endmacro()
+# A function, not a macro: a macro would parse the backslashes of a regex in `text` again.
+function(fail text)
+  set(failures ${failures} "${text}" PARENT_SCOPE)
+endfunction()
 
 # Exactly one of the lines in the list named `rows` matches `regex`.
 function(expect_one_row rows regex where)
@@ -25,6 +27,18 @@ function(expect_row_count rows expected where)
   if(NOT count EQUAL expected)
     fail("${where}: ${count} lines, expected ${expected}: a header and one per rendered step")
   endif()
+  set(failures ${failures} PARENT_SCOPE)
+endfunction()
+
+# The lines of the file at `path` into `out`; none, and a failure, when it is missing.
+function(read_lines path out)
+  set(lines "")
+  if(EXISTS ${path})
+    file(STRINGS ${path} lines)
+  else()
+    fail("${path}: missing")
+  endif()
+  set(${out} ${lines} PARENT_SCOPE)
   set(failures ${failures} PARENT_SCOPE)
 endfunction()
 
@@ -69,12 +83,12 @@ function(check_outputs)
   list(LENGTH scenes scene_count)
 
   set(log_path ${OUT_DIR}/tetray_log.csv)
-  file(STRINGS ${log_path} log)
+  read_lines(${log_path} log)
   math(EXPR log_rows "1 + ${rendered} * ${scene_count}")
   expect_row_count(log ${log_rows} ${log_path})
   foreach(scene ${scenes})
     set(cinema_path ${OUT_DIR}/${scene}.cdb/data.csv)
-    file(STRINGS ${cinema_path} cinema)
+    read_lines(${cinema_path} cinema)
     math(EXPR cinema_rows "1 + ${rendered}")
     expect_row_count(cinema ${cinema_rows} ${cinema_path})
     foreach(step ${steps})

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "minisolver/solver_config.hpp"
 
@@ -136,8 +138,8 @@ TEST(SolverConfig, UnknownKeysAreNamedWithTheirLine) {
   expect_error(edited("scheme: backward_euler", "schem: backward_euler"), "solver.heat.schem",
                "schem:", "unknown key");
   expect_error(edited("  cg:", "  gc:"), "solver.gc", "gc:", "unknown key");
-  expect_error(edited("contrast: 1.0e6", "ratio: 1.0e6"), "solver.stiff_region.ratio", "ratio:",
-               "unknown key");
+  expect_error(edited("contrast: 1.0e6", "ratio: 1.0e6"), "solver.stiff_region.ratio",
+               "ratio:", "unknown key");
 }
 
 TEST(SolverConfig, WrongTypesAreNamedWithTheirLine) {
@@ -147,18 +149,20 @@ TEST(SolverConfig, WrongTypesAreNamedWithTheirLine) {
                "expected a number");
   expect_error(edited("cells: [4, 3, 2]", "cells: [4, 3]"), "solver.mesh.cells", "[4, 3]",
                "expected a list of 3");
+  expect_error(edited("above: 0.5", "above: high"), "solver.stiff_region.above", "high",
+               "expected a number");
   expect_error(edited("allow_unstable: true", "allow_unstable: maybe"),
                "solver.elasticity.allow_unstable", "maybe", "expected true or false");
 }
 
 TEST(SolverConfig, ImpossibleValuesAreNamedWithTheirLine) {
   expect_error(edited("dt: 0.003", "dt: -0.003"), "solver.time.dt", "-0.003", "must be > 0");
-  expect_error(edited("poisson: 0.25", "poisson: 0.5"), "solver.elasticity.poisson", "0.5",
+  expect_error(edited("poisson: 0.25", "poisson: 0.5"), "solver.elasticity.poisson", "poisson: 0.5",
                "must lie in (-1, 0.5)");
   expect_error(edited("density: 7.8", "density: 0"), "solver.elasticity.density", "density: 0",
                "must be > 0");
-  expect_error(edited("scheme: central_difference", "scheme: leapfrog"),
-               "solver.elasticity.scheme", "leapfrog", "'leapfrog' is not one of");
+  expect_error(edited("scheme: central_difference", "scheme: leapfrog"), "solver.elasticity.scheme",
+               "leapfrog", "'leapfrog' is not one of");
   expect_error(edited("contrast: 1.0e6", "contrast: -1"), "solver.stiff_region.contrast",
                "contrast: -1", "must be > 0");
   expect_error(edited("axis: y", "axis: w"), "solver.stiff_region.axis", "axis: w",
@@ -170,12 +174,22 @@ TEST(SolverConfig, AStiffRegionMustSayWhereAndHowStiff) {
                "stiff_region:", "missing");
 }
 
-// The README's demo keeps a solver section this parser accepts.
-TEST(SolverConfig, DemoConfigParses) {
-  const auto path = std::filesystem::path(TETRAY_SOURCE_DIR) / "configs" / "demo.yaml";
-  SolverConfig c;
-  std::string error;
-  EXPECT_TRUE(parse_solver_config(YAML::LoadFile(path.string())["solver"], c, error)) << error;
+// Every shipped config with a solver section (the README's demo, the examples) keeps one this
+// parser accepts.
+TEST(SolverConfig, ShippedSolverConfigsParse) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> parsed;
+  for (const auto& entry :
+       fs::recursive_directory_iterator(fs::path(TETRAY_SOURCE_DIR) / "configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    const YAML::Node root = YAML::LoadFile(entry.path().string());
+    if (!root["solver"]) continue;
+    SolverConfig c;
+    std::string error;
+    EXPECT_TRUE(parse_solver_config(root["solver"], c, error)) << entry.path() << ": " << error;
+    parsed.push_back(entry.path().filename().string());
+  }
+  EXPECT_NE(std::find(parsed.begin(), parsed.end(), "demo.yaml"), parsed.end());
 }
 
 }  // namespace
