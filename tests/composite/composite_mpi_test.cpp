@@ -18,22 +18,12 @@ using testing::brute_force_composite;
 using testing::Coverage;
 using testing::random_coverage;
 using testing::random_image;
+using testing::World;
+using testing::world;
 
 constexpr std::uint64_t kHeaderBytes = kPieceHeaderWords * sizeof(std::uint32_t);
 constexpr std::uint64_t kRunBytes = kRunHeaderWords * sizeof(std::uint32_t);
 constexpr std::uint64_t kPixelBytes = kPixelWords * sizeof(std::uint32_t);
-
-struct World {
-  int rank = 0;
-  int size = 1;
-};
-
-World world() {
-  World w;
-  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
-  return w;
-}
 
 std::size_t count_differences(const Framebuffer& a, const Framebuffer& b) {
   std::size_t differences = 0;

@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "composite_test_images.hpp"
 #include "render/composite.hpp"
 #include "render/global_reduce.hpp"
 #include "render/trace.hpp"
@@ -25,19 +26,10 @@
 namespace tetray::render {
 namespace {
 
+using testing::World;
+using testing::world;
+
 constexpr int kImageSide = 256;
-
-struct World {
-  int rank = 0;
-  int size = 1;
-};
-
-World world() {
-  World w;
-  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
-  return w;
-}
 
 const GyroidTwist& scene() {
   static const GyroidTwist gyroid = make_gyroid_twist(12, 0.2);
