@@ -1,9 +1,11 @@
 // Axis-aligned boxes used while building and refitting the BVH.
 #pragma once
 
+#include <cstring>
 #include <limits>
 
 #include "render/bvh.hpp"
+#include "render/simd.hpp"
 #include "render/vec.hpp"
 
 namespace tetray::render {
@@ -31,6 +33,33 @@ struct Box3 {
     if (!(lo.x <= hi.x)) return 0;
     const Vec3f e = hi - lo;
     return e.x * e.y + e.y * e.z + e.z * e.x;
+  }
+};
+
+// A 4D bound being grown, in registers.
+struct Bounds4Builder {
+  simd::Float4 lo = simd::Float4(std::numeric_limits<float>::infinity());
+  simd::Float4 hi = simd::Float4(-std::numeric_limits<float>::infinity());
+
+  void grow(const Vertex& v) {
+    alignas(16) float xyzf[4];
+    std::memcpy(xyzf, &v, sizeof xyzf);  // one aligned load once optimized
+    const auto p = simd::Float4::load_aligned(xyzf);
+    lo = xsimd::min(lo, p);
+    hi = xsimd::max(hi, p);
+  }
+  void grow(const Bounds4& b) {
+    lo = xsimd::min(lo, simd::Float4::load_unaligned(b.lo));
+    hi = xsimd::max(hi, simd::Float4::load_unaligned(b.hi));
+  }
+  void grow(const TetVolume& volume, const Tet& tet) {
+    for (std::int32_t v : tet.v) grow(volume.vertices[v]);
+  }
+  Bounds4 bounds() const {
+    Bounds4 b;
+    lo.store_unaligned(b.lo);
+    hi.store_unaligned(b.hi);
+    return b;
   }
 };
 

@@ -13,29 +13,9 @@
 namespace tetray::render {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-// Grows bounds by a tet's vertices in dimensions [first_axis, 4): 0 for x, y, z and f,
-// 3 for the scalar range alone.
-template <int first_axis>
-void grow_by_tet(const TetVolume& volume, const Tet& tet, Bounds4& b) {
-  for (std::int32_t v : tet.v) {
-    const float* p = &volume.vertices[v].x;
-    for (int a = first_axis; a < 4; ++a) {
-      b.lo[a] = std::min(b.lo[a], p[a]);
-      b.hi[a] = std::max(b.hi[a], p[a]);
-    }
-  }
-}
-
-constexpr Bounds4 kEmptyBounds{{kInf, kInf, kInf, kInf}, {-kInf, -kInf, -kInf, -kInf}};
-
-template <bool geometry>
-void fit_leaf(const TetVolume& volume, BvhNode& node) {
-  constexpr int first_axis = geometry ? 0 : 3;
-  Bounds4 b = kEmptyBounds;
-  for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
-    grow_by_tet<first_axis>(volume, volume.tets[t], b);
+// Writes dimensions [first_axis, 4) of `b` into `node`: 0 for x, y, z and f, 3 for the scalar
+// range alone (a field-only refit leaves the geometry as it is).
+void set_bounds(BvhNode& node, const Bounds4& b, int first_axis) {
   for (int a = first_axis; a < 4; ++a) {
     node.bounds.lo[a] = b.lo[a];
     node.bounds.hi[a] = b.hi[a];
@@ -43,16 +23,21 @@ void fit_leaf(const TetVolume& volume, BvhNode& node) {
 }
 
 template <bool geometry>
-void fit_inner(std::vector<BvhNode>& nodes, BvhNode& node) {
-  const Bounds4& l = nodes[node.first].bounds;
-  const Bounds4& r = nodes[node.first + 1].bounds;
-  for (int a = geometry ? 0 : 3; a < 4; ++a) {
-    node.bounds.lo[a] = std::min(l.lo[a], r.lo[a]);
-    node.bounds.hi[a] = std::max(l.hi[a], r.hi[a]);
-  }
+void fit_leaf(const TetVolume& volume, BvhNode& node) {
+  Bounds4Builder b;
+  for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
+    b.grow(volume, volume.tets[t]);
+  set_bounds(node, b.bounds(), geometry ? 0 : 3);
 }
 
-// Fits one node and returns its contribution to the (unnormalised) SAH cost.
+template <bool geometry>
+void fit_inner(std::vector<BvhNode>& nodes, BvhNode& node) {
+  Bounds4Builder b;
+  b.grow(nodes[node.first].bounds);
+  b.grow(nodes[node.first + 1].bounds);
+  set_bounds(node, b.bounds(), geometry ? 0 : 3);
+}
+
 template <bool geometry>
 double fit_node(const TetVolume& volume, std::vector<BvhNode>& nodes, std::uint32_t i) {
   BvhNode& node = nodes[i];
@@ -104,9 +89,9 @@ double sah_cost(const Bvh& bvh) {
 }
 
 Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
-  Bounds4 b = kEmptyBounds;
-  grow_by_tet<0>(volume, tet, b);
-  return b;
+  Bounds4Builder b;
+  b.grow(volume, tet);
+  return b.bounds();
 }
 
 }  // namespace tetray::render

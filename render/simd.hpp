@@ -16,6 +16,10 @@ using Mask = xsimd::batch_bool<float>;
 using Ints = xsimd::batch<std::int32_t>;
 inline constexpr int kWidth = static_cast<int>(Floats::size);
 
+// Four floats in one register: a Vertex (x, y, z, f) or one side of a 4D bound, so a bound
+// grows by one min and one max per vertex (seed 000 §6.2).
+using Float4 = xsimd::make_sized_batch_t<float, 4>;
+
 // Lane type for a packet of `rays` rays: a full batch when it fills one, else plain float.
 template <int rays>
 struct LaneTypes {

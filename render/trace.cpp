@@ -36,16 +36,6 @@ void write_background(Framebuffer& image, std::size_t p) {
   image.hit[p] = kNoHit;
 }
 
-Bounds4 tet_bounds(const Vertex* const v[4]) {
-  Bounds4 b;
-  for (int a = 0; a < 4; ++a) {
-    const float p0 = (&v[0]->x)[a], p1 = (&v[1]->x)[a], p2 = (&v[2]->x)[a], p3 = (&v[3]->x)[a];
-    b.lo[a] = std::min(std::min(p0, p1), std::min(p2, p3));
-    b.hi[a] = std::max(std::max(p0, p1), std::max(p2, p3));
-  }
-  return b;
-}
-
 template <int S, bool kStats>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
   RayPacket<S> packet;
@@ -58,7 +48,7 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
       const Tet& tet = f.volume.tets[t];
       const Vertex* v[4] = {&f.volume.vertices[tet.v[0]], &f.volume.vertices[tet.v[1]],
                             &f.volume.vertices[tet.v[2]], &f.volume.vertices[tet.v[3]]};
-      const Bounds4 box = tet_bounds(v);
+      const Bounds4 box = tet_bounds(f.volume, tet);
       if constexpr (kStats) ++stats.isorange_tests;
       if (!f.isos.straddled_by(box.lo[3], box.hi[3])) continue;
       if (S > 1 && traversal.frustum_misses(box)) continue;
