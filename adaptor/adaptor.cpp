@@ -27,14 +27,14 @@ Status duplicate(MPI_Comm comm, Communicator& out) {
   return Status::success();
 }
 
-// Collective: every rank parses (the text or the file), the ranks agree on the outcome, and
-// rank 0 prepares the outputs.
+// Collective: every rank parses (the text or the file) for the communicator's size, the ranks
+// agree on the outcome, and the writer rank prepares the outputs.
 template <typename Parse>
 std::unique_ptr<Adaptor::Impl> make_impl(MPI_Comm comm, Parse&& parse, Status& status) {
   Communicator c;
   status = duplicate(comm, c);
   if (!status.ok()) return nullptr;
-  config::ParseResult parsed = parse();
+  config::ParseResult parsed = parse(c.size);
   if (!parsed.config) status = {StatusCode::config_error, parsed.error};
   render::ValueRange failure[1];
   status = agree(c, status, failure);
@@ -57,7 +57,8 @@ std::unique_ptr<Adaptor> Adaptor::create(MPI_Comm comm, const std::string& confi
                                          Status& status) {
   try {
     auto impl = make_impl(
-        comm, [&] { return config::load_config_file(config_path); }, status);
+        comm, [&](int rank_count) { return config::load_config_file(config_path, rank_count); },
+        status);
     return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
   } catch (const std::exception& e) {
     status = internal("create", e.what());
@@ -69,7 +70,9 @@ std::unique_ptr<Adaptor> Adaptor::create_from_yaml(MPI_Comm comm, std::string_vi
                                                    Status& status) {
   try {
     auto impl = make_impl(
-        comm, [&] { return config::parse_config(yaml, "<yaml string>"); }, status);
+        comm,
+        [&](int rank_count) { return config::parse_config(yaml, "<yaml string>", rank_count); },
+        status);
     return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
   } catch (const std::exception& e) {
     status = internal("create", e.what());

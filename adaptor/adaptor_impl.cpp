@@ -69,16 +69,21 @@ Adaptor::Impl::~Impl() {
 }
 
 Status Adaptor::Impl::start() {
-  Status status;
-  if (comm_.rank == 0) {
-    status.message = prepare_outputs(config_.output, config_.scenes);
-    if (!status.message.empty()) status.code = StatusCode::io_error;
-    if (status.ok()) writer_ = std::make_unique<ImageWriter>(config_.output);
+  const Status status = guarded("create", [&] { return prepare_outputs_on_this_rank(); });
+  render::ValueRange failure[1];
+  return agree(comm_, status, failure);
+}
+
+Status Adaptor::Impl::prepare_outputs_on_this_rank() {
+  const config::Output& output = config_.output;
+  std::string error;
+  if (is_writer()) error = prepare_outputs(output, config_.scenes);
+  if (error.empty() && output.per_rank_images) {
+    error = prepare_rank_image_directories(output, config_.scenes);
   }
-  if (int rc = broadcast_status(comm_, 0, status); rc != MPI_SUCCESS) {
-    return {StatusCode::mpi_error, "create: " + mpi_error_text(rc)};
-  }
-  return status;
+  if (!error.empty()) return {StatusCode::io_error, error};
+  if (is_writer()) writer_ = std::make_unique<ImageWriter>(output);
+  return Status::success();
 }
 
 bool Adaptor::Impl::will_render(std::int64_t step, double time) const {
@@ -123,7 +128,7 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
     report->seconds_blocked = blocked_ms * 1e-3;
   }
   if (!status.ok()) return status;
-  if (comm_.rank == 0 && !config_.output.quiet) print_progress(step, time, blocked_ms);
+  if (is_writer() && !config_.output.quiet) print_progress(step, time, blocked_ms);
   return take_writer_error();
 }
 
@@ -150,6 +155,9 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   status = agree(comm_, status, ranges_);
   if (!status.ok()) return status;
   status = guarded("trace", [&] { return trace_scenes(fields); });
+  if (status.ok() && config_.output.per_rank_images) {
+    status = guarded("per-rank images", [&] { return write_rank_images(); });
+  }
   status = agree(comm_, status, std::span(ranges_).first(1));
   if (!status.ok()) return status;
   status = guarded("composite", [&] { return composite_and_submit(); });
@@ -292,6 +300,17 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
   return Status::success();
 }
 
+// Before compositing, which leaves only the writer rank's image defined.
+Status Adaptor::Impl::write_rank_images() {
+  for (const SceneState& s : scenes_) {
+    if (!s.due) continue;
+    std::string error =
+        write_rank_image(config_.output, s.config.name, s.record.step, comm_.rank, s.image);
+    if (!error.empty()) return {StatusCode::io_error, std::move(error)};
+  }
+  return Status::success();
+}
+
 render::Camera Adaptor::Impl::camera_for(const SceneState& s, std::size_t first_range) const {
   const config::CameraSpec& spec = s.config.camera;
   if (!spec.auto_fit) {
@@ -321,8 +340,10 @@ Status Adaptor::Impl::composite_and_submit() {
     sums[4 * k + 2] = skipped_[scenes_[k].volume];
     sums[4 * k + 3] = volume.volume().bytes() + volume.bvh().bytes();
   }
-  const int reduced = reduce_sum_to_root(comm_, sums);
-  if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, std::span(&rss, 1)) != MPI_SUCCESS) {
+  const int writer = config_.output.writer_rank;
+  const int reduced = reduce_sum_to_root(comm_, writer, sums);
+  if (reduced != MPI_SUCCESS ||
+      reduce_max_to_root(comm_, writer, std::span(&rss, 1)) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
@@ -330,13 +351,14 @@ Status Adaptor::Impl::composite_and_submit() {
     if (!s.due) continue;
     if (comm_.size > 1) {
       const Stopwatch watch;
-      if (int rc = render::composite(s.image, comm_.comm, {}); rc != MPI_SUCCESS) {
+      const render::CompositeOptions options{.root = writer};
+      if (int rc = render::composite(s.image, comm_.comm, options); rc != MPI_SUCCESS) {
         return {StatusCode::mpi_error,
                 "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
       }
       s.record.composite_ms = watch.ms();
     }
-    if (comm_.rank != 0) continue;
+    if (!is_writer()) continue;
     StepRecord& r = s.record;
     r.tets = sums[4 * k];
     r.kept_tets = sums[4 * k + 1];

@@ -1,5 +1,6 @@
 // The adaptor behind the public API: per-scene triggers, one FieldVolume per isosurface field,
-// the render step of DESIGN §2 as a sequence of stages, and the writer thread on rank 0.
+// the render step of DESIGN §2 as a sequence of stages, and the writer thread on the writer rank
+// (output.writer_rank).
 #pragma once
 
 #include <memory>
@@ -24,7 +25,8 @@ class Adaptor::Impl {
   Impl(Communicator comm, config::Config config);
   ~Impl();
 
-  // Collective: rank 0 creates the output directories and logs; every rank gets the outcome.
+  // Collective: the writer rank creates the output directories and logs (every rank its own
+  // per-rank image directories); every rank gets the outcome.
   Status start();
 
   bool will_render(std::int64_t step, double time) const;
@@ -58,8 +60,11 @@ class Adaptor::Impl {
   Status update_volumes(const MeshView& mesh, std::span<const FieldView> fields);
   Status global_inputs(std::span<const FieldView> fields);
   Status trace_scenes(std::span<const FieldView> fields);
+  Status write_rank_images();
   Status composite_and_submit();
 
+  Status prepare_outputs_on_this_rank();
+  bool is_writer() const { return comm_.rank == config_.output.writer_rank; }
   // The first due scene (of volume v); null when none is due.
   SceneState* first_due_scene(std::size_t v = kAnyVolume);
   render::Camera camera_for(const SceneState& s, std::size_t first_range) const;
@@ -86,7 +91,7 @@ class Adaptor::Impl {
   std::string bvh_decision_;
   std::uint64_t tets_skipped_ = 0;
 
-  std::unique_ptr<ImageWriter> writer_;  // rank 0 only
+  std::unique_ptr<ImageWriter> writer_;  // on the writer rank only
   bool finalized_ = false;
 };
 

@@ -3,21 +3,21 @@
 namespace tetray {
 namespace {
 
-int reduce_to_root(const Communicator& c, std::span<std::uint64_t> values, MPI_Op op) {
+int reduce_to_root(const Communicator& c, int root, std::span<std::uint64_t> values, MPI_Op op) {
   if (c.size == 1 || values.empty()) return MPI_SUCCESS;
-  void* send = c.rank == 0 ? MPI_IN_PLACE : values.data();
-  return MPI_Reduce(send, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, op, 0,
+  void* send = c.rank == root ? MPI_IN_PLACE : values.data();
+  return MPI_Reduce(send, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, op, root,
                     c.comm);
 }
 
 }  // namespace
 
-int reduce_sum_to_root(const Communicator& c, std::span<std::uint64_t> values) {
-  return reduce_to_root(c, values, MPI_SUM);
+int reduce_sum_to_root(const Communicator& c, int root, std::span<std::uint64_t> values) {
+  return reduce_to_root(c, root, values, MPI_SUM);
 }
 
-int reduce_max_to_root(const Communicator& c, std::span<std::uint64_t> values) {
-  return reduce_to_root(c, values, MPI_MAX);
+int reduce_max_to_root(const Communicator& c, int root, std::span<std::uint64_t> values) {
+  return reduce_to_root(c, root, values, MPI_MAX);
 }
 
 int broadcast_status(const Communicator& c, int root, Status& status) {

@@ -19,9 +19,9 @@ struct Communicator {
   int size = 1;
 };
 
-// Element-wise sum and maximum onto rank 0, in place.
-int reduce_sum_to_root(const Communicator& c, std::span<std::uint64_t> values);
-int reduce_max_to_root(const Communicator& c, std::span<std::uint64_t> values);
+// Element-wise sum and maximum onto `root`, in place.
+int reduce_sum_to_root(const Communicator& c, int root, std::span<std::uint64_t> values);
+int reduce_max_to_root(const Communicator& c, int root, std::span<std::uint64_t> values);
 
 // Copies `root`'s status to every rank.
 int broadcast_status(const Communicator& c, int root, Status& status);

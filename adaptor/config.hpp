@@ -57,6 +57,8 @@ struct Output {
   int png_compression = 1;  // zlib level 0..9, fast by default
   int queue_depth = 2;      // images waiting for the writer thread; 0 writes in execute
   bool quiet = false;
+  int writer_rank = 0;  // receives the composited image; writes images, Cinema rows, the log
+  bool per_rank_images = false;  // each rank also writes its own layer (debugging)
 };
 
 struct Config {

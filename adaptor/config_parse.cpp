@@ -45,11 +45,21 @@ Trigger parse_trigger(const YamlReader& r, const YAML::Node& node, std::string_v
   return t;
 }
 
-Output parse_output(const YamlReader& r, const YAML::Node& node) {
+int parse_writer_rank(const YamlReader& r, const YAML::Node& node, int rank_count) {
+  const auto rank = r.integer_in(node, "output.writer_rank", 0, 1'000'000'000);
+  if (rank >= rank_count) {
+    r.fail(node, "output.writer_rank",
+           "rank " + std::to_string(rank) + " does not exist: the communicator has " +
+               std::to_string(rank_count) + " rank(s)");
+  }
+  return static_cast<int>(rank);
+}
+
+Output parse_output(const YamlReader& r, const YAML::Node& node, int rank_count) {
   const std::string key = "output";
-  r.allow_keys(
-      node, key,
-      {"directory", "formats", "cinema", "png_compression", "writer_queue_depth", "quiet"});
+  r.allow_keys(node, key,
+               {"directory", "formats", "cinema", "png_compression", "writer_queue_depth", "quiet",
+                "writer_rank", "per_rank_images"});
   Output out;
   if (node["directory"]) out.directory = r.string(node["directory"], "output.directory");
   if (const YAML::Node formats = node["formats"]) {
@@ -71,6 +81,10 @@ Output parse_output(const YamlReader& r, const YAML::Node& node) {
         r.integer_in(node["writer_queue_depth"], "output.writer_queue_depth", 0, 64));
   }
   if (node["quiet"]) out.quiet = r.boolean(node["quiet"], "output.quiet");
+  if (node["writer_rank"]) out.writer_rank = parse_writer_rank(r, node["writer_rank"], rank_count);
+  if (node["per_rank_images"]) {
+    out.per_rank_images = r.boolean(node["per_rank_images"], "output.per_rank_images");
+  }
   return out;
 }
 
@@ -249,11 +263,12 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   return s;
 }
 
-Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source) {
+Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source,
+                  int rank_count) {
   r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite"});
   Config config;
   config.source = source;
-  if (root["output"]) config.output = parse_output(r, root["output"]);
+  if (root["output"]) config.output = parse_output(r, root["output"], rank_count);
   const Trigger default_trigger =
       root["trigger"] ? parse_trigger(r, root["trigger"], "trigger") : Trigger{};
   if (root["bvh"]) config.bvh = parse_bvh(r, root["bvh"]);
@@ -280,14 +295,14 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
 
 }  // namespace
 
-ParseResult parse_config(std::string_view yaml, const std::string& source) {
+ParseResult parse_config(std::string_view yaml, const std::string& source, int rank_count) {
   ParseResult result;
   try {
     const YAML::Node root = YAML::Load(std::string(yaml));
     YamlReader reader(source);
     if (!root.IsMap())
       reader.fail(root, "(document)", "expected a map with output, trigger, scenes, bvh");
-    result.config = parse_root(reader, root, source);
+    result.config = parse_root(reader, root, source, rank_count);
   } catch (const LocatedError& e) {
     result.error = e.what();
   } catch (const YAML::Exception& e) {
@@ -299,12 +314,12 @@ ParseResult parse_config(std::string_view yaml, const std::string& source) {
   return result;
 }
 
-ParseResult load_config_file(const std::string& path) {
+ParseResult load_config_file(const std::string& path, int rank_count) {
   std::ifstream in(path);
   if (!in) return {std::nullopt, path + ": cannot open the config file"};
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_config(text.str(), path);
+  return parse_config(text.str(), path, rank_count);
 }
 
 }  // namespace tetray::config

@@ -15,8 +15,9 @@ struct ParseResult {
   std::string error;
 };
 
-// `source` names the text in messages (a file name, or "<yaml string>").
-ParseResult parse_config(std::string_view yaml, const std::string& source);
-ParseResult load_config_file(const std::string& path);
+// `source` names the text in messages (a file name, or "<yaml string>"). `rank_count` is the
+// size of the communicator the config is for: output.writer_rank must name one of its ranks.
+ParseResult parse_config(std::string_view yaml, const std::string& source, int rank_count = 1);
+ParseResult load_config_file(const std::string& path, int rank_count = 1);
 
 }  // namespace tetray::config

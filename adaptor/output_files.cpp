@@ -61,13 +61,31 @@ std::uint64_t count_hits(const render::Framebuffer& image) {
   return hits;
 }
 
+// `number` zero-padded to `digits` (more digits when it needs them).
+std::string padded(long long number, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%0*lld", digits, number);
+  return text;
+}
+
+std::string make_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  return ec ? "cannot create output directory " + dir.string() + ": " + ec.message()
+            : std::string();
+}
+
 }  // namespace
 
 std::string image_path(const std::string& directory, const std::string& scene, std::int64_t step,
                        const char* extension) {
-  char number[32];
-  std::snprintf(number, sizeof number, "%06lld", static_cast<long long>(step));
-  return directory + '/' + scene + '/' + scene + '_' + number + '.' + extension;
+  return directory + '/' + scene + '/' + scene + '_' + padded(step, 6) + '.' + extension;
+}
+
+std::string rank_image_path(const std::string& directory, const std::string& scene,
+                            std::int64_t step, int rank) {
+  return directory + '/' + scene + "/ranks/" + scene + '_' + padded(step, 6) + "_rank" +
+         padded(rank, 4) + ".png";
 }
 
 std::string log_path(const std::string& directory) { return directory + "/tetray_log.csv"; }
@@ -79,12 +97,10 @@ std::string cinema_path(const std::string& directory, const std::string& scene) 
 std::string prepare_outputs(const config::Output& output,
                             const std::vector<config::Scene>& scenes) {
   namespace fs = std::filesystem;
-  std::error_code ec;
   for (const config::Scene& s : scenes) {
     for (const fs::path& dir :
          {fs::path(output.directory) / s.name, fs::path(output.directory) / (s.name + ".cdb")}) {
-      fs::create_directories(dir, ec);
-      if (ec) return "cannot create output directory " + dir.string() + ": " + ec.message();
+      if (auto e = make_directory(dir); !e.empty()) return e;
     }
     if (output.cinema) {
       if (auto e = create_with_header(cinema_path(output.directory, s.name), cinema_header(output));
@@ -94,6 +110,24 @@ std::string prepare_outputs(const config::Output& output,
     }
   }
   return create_with_header(log_path(output.directory), log_header());
+}
+
+std::string prepare_rank_image_directories(const config::Output& output,
+                                           const std::vector<config::Scene>& scenes) {
+  for (const config::Scene& s : scenes) {
+    if (auto e = make_directory(std::filesystem::path(output.directory) / s.name / "ranks");
+        !e.empty()) {
+      return e;
+    }
+  }
+  return {};
+}
+
+std::string write_rank_image(const config::Output& output, const std::string& scene,
+                             std::int64_t step, int rank, const render::Framebuffer& image) {
+  const render::WriteResult written = render::write_png(
+      image, rank_image_path(output.directory, scene, step, rank), output.png_compression);
+  return written.ok ? std::string() : written.message;
 }
 
 std::string append_line(const std::string& path, const std::string& line) {

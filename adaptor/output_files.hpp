@@ -1,7 +1,9 @@
-// The files of DESIGN §3 on the root rank: images `<dir>/<scene>/<scene>_<step>.exr|png`
+// The files of DESIGN §3 on the writer rank: images `<dir>/<scene>/<scene>_<step>.exr|png`
 // (written atomically by render/image_write), the Cinema database `<dir>/<scene>.cdb/data.csv`
-// and the timing log `<dir>/tetray_log.csv`. Every function returns an error message (empty on
-// success); a failed append leaves the file as it was, so nothing already written is damaged.
+// and the timing log `<dir>/tetray_log.csv`; with per_rank_images, every rank's own image
+// `<dir>/<scene>/ranks/<scene>_<step>_rank<rank>.png`. Every function returns an error message
+// (empty on success); a failed append leaves the file as it was, so nothing already written is
+// damaged.
 #pragma once
 
 #include <cstdint>
@@ -16,11 +18,23 @@ namespace tetray {
 
 std::string image_path(const std::string& directory, const std::string& scene, std::int64_t step,
                        const char* extension);
+std::string rank_image_path(const std::string& directory, const std::string& scene,
+                            std::int64_t step, int rank);
 std::string log_path(const std::string& directory);
 std::string cinema_path(const std::string& directory, const std::string& scene);
 
 // Creates the directories and starts the log and the Cinema tables with their headers.
 std::string prepare_outputs(const config::Output& output, const std::vector<config::Scene>& scenes);
+
+// Creates `<dir>/<scene>/ranks` for every scene. Every rank calls it: its output directory may
+// be one that only it sees.
+std::string prepare_rank_image_directories(const config::Output& output,
+                                           const std::vector<config::Scene>& scenes);
+
+// This rank's un-composited image as PNG, without the background: what the rank did not cover
+// stays transparent, so the ranks' layers can be laid over each other.
+std::string write_rank_image(const config::Output& output, const std::string& scene,
+                             std::int64_t step, int rank, const render::Framebuffer& image);
 
 // Appends `line` and a newline; on a short write truncates back to the old length.
 std::string append_line(const std::string& path, const std::string& line);

@@ -162,6 +162,21 @@ TEST_F(Reliability, WriterThreadErrorReachesTheNextCall) {
   EXPECT_NE(reported.message.find("plane_000000"), std::string::npos) << reported.message;
 }
 
+TEST_F(Reliability, PerRankImageErrorIsTheStepsStatus) {
+  Status status;
+  const fs::path out = dir_.path() / "per_rank";
+  auto a = Adaptor::create_from_yaml(MPI_COMM_WORLD,
+                                     plane_config(out.string(), ", per_rank_images: true"), status);
+  ASSERT_TRUE(a) << status.message;
+  // The per-rank image directory becomes a regular file: the rank's image write fails.
+  fs::remove_all(out / "plane" / "ranks");
+  std::ofstream(out / "plane" / "ranks") << "not a directory";
+  status = a->execute(0, 0, scene_.view(), scene_.fields());
+  EXPECT_EQ(status.code, StatusCode::io_error);
+  EXPECT_NE(status.message.find("plane_000000_rank0000.png"), std::string::npos) << status.message;
+  EXPECT_TRUE(a->finalize().ok());
+}
+
 TEST_F(Reliability, UnwritableOutputDirectory) {
   const fs::path file = dir_.path() / "regular_file";
   std::ofstream(file) << "x";

@@ -82,7 +82,26 @@ TEST(Config, DefaultsNeedOnlyNameFieldIsovalues) {
   EXPECT_EQ(s.trigger.every_steps, 1);
   EXPECT_TRUE(r.config->output.exr && r.config->output.png && r.config->output.cinema);
   EXPECT_EQ(r.config->output.png_compression, 1);
+  EXPECT_EQ(r.config->output.writer_rank, 0);
+  EXPECT_FALSE(r.config->output.per_rank_images);
   EXPECT_TRUE(s.color_by.empty());
+}
+
+TEST(Config, WriterRankMustBeARankOfTheCommunicator) {
+  const auto yaml = [](int rank) {
+    return "scenes: [{name: s, field: f, isovalues: [0]}]\noutput:\n  per_rank_images: true\n"
+           "  writer_rank: " +
+           std::to_string(rank) + "\n";
+  };
+  const ParseResult last = parse_config(yaml(2), "ranks.yaml", 3);
+  ASSERT_TRUE(last.config) << last.error;
+  EXPECT_EQ(last.config->output.writer_rank, 2);
+  EXPECT_TRUE(last.config->output.per_rank_images);
+  const ParseResult beyond = parse_config(yaml(3), "ranks.yaml", 3);
+  ASSERT_FALSE(beyond.config);
+  EXPECT_NE(beyond.error.find("ranks.yaml:4:"), std::string::npos) << beyond.error;
+  EXPECT_NE(beyond.error.find("output.writer_rank"), std::string::npos) << beyond.error;
+  EXPECT_NE(beyond.error.find("3 rank(s)"), std::string::npos) << beyond.error;
 }
 
 struct BadConfig {
@@ -120,6 +139,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "bad.yaml:5:", "scenes[0].image.width"},
         BadConfig{"output: {png_compression: 12}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
                   "bad.yaml:1:", "output.png_compression"},
+        BadConfig{"output: {writer_rank: -1}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
+                  "bad.yaml:1:", "output.writer_rank"},
+        BadConfig{"output:\n  per_rank_images: 2\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
+                  "bad.yaml:2:", "output.per_rank_images"},
         BadConfig{"trigger: {every: 0}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
                   "bad.yaml:1:", "trigger.every"},
         BadConfig{"scenes:\n  - name: s\n    field: f\n    isovalues: [0]\n"
