@@ -9,6 +9,7 @@
 #include <fstream>
 #include <set>
 
+#include "../io/scratch_dir.hpp"
 #include "plane_scene.hpp"
 #include "png_read.hpp"
 #include "tetray/adaptor.hpp"
@@ -50,11 +51,6 @@ class SharedDir {
  private:
   std::string path_;
 };
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 int world_size() {
   int size = 1;

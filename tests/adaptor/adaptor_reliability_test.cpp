@@ -16,11 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // One adaptor writing inline (queue depth 0), so a write error shows in the same call.
 class Reliability : public ::testing::Test {
  protected:

@@ -15,11 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 std::unique_ptr<Adaptor> make(const std::string& yaml) {
   Status status;
   auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status);

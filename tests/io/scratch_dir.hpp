@@ -1,9 +1,12 @@
-// A fresh directory per test under the system's temporary directory, removed afterwards.
+// A fresh directory per test under the system's temporary directory, removed afterwards, and
+// reading a written file back.
 #pragma once
 
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -33,5 +36,11 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+// A whole file's bytes ("" when it cannot be read): for comparing written files.
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
 
 }  // namespace tetray::testing
