@@ -156,7 +156,7 @@ TEST(Refit, ExtremeDeformationRebuildsAndStaysExact) {
   const IsoSurface surfaces[] = {{0.6f, {1, 1, 1}}};
   const AgreementCounts counts = expect_agreement(scene, camera, surfaces, "folded");
   EXPECT_EQ(counts.failures(), 0u) << counts.summary();
-  EXPECT_GT(counts.reference_hits, 50u);
+  EXPECT_GT(counts.reference_hits, counts.pixels / 50) << "the surface must be in view";
 }
 
 // The node bounds after a refit, and the tree of a build, are bitwise the same for any
