@@ -4,10 +4,12 @@
 // the subtrees are then built in parallel and laid out one after the other. Every decision
 // depends only on the data, so the tree is the same for any thread count, and the subtrees are
 // exactly the units of the parallel refit (seed 000 §6.2).
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 #include "render/bounds.hpp"
@@ -21,6 +23,7 @@ constexpr int kSahBins = 16;
 constexpr int kMaxSpatialRetries = 32;
 constexpr int kObjectMedianDepth = 48;  // below this depth split by count: depth stays bounded
 constexpr std::uint32_t kTargetSubtrees = 64;
+constexpr std::uint32_t kParallelGrain = 16384;  // ranges below this are scanned by one thread
 
 struct Range {
   std::uint32_t begin, end;
@@ -38,14 +41,21 @@ struct BuildItem {
 
 struct BuildContext {
   const BvhBuildOptions& options;
-  std::vector<BuildItem> items;  // tets in build order
-  std::vector<Box3> tet_boxes;   // SAH only, by tet
+  std::vector<BuildItem> items;    // tets in build order
+  std::vector<Bounds4> tet_boxes;  // SAH only, by tet
 };
 
 Box3 centroid_bounds(const BuildContext& ctx, std::uint32_t begin, std::uint32_t end) {
-  Box3 box;
-  for (std::uint32_t i = begin; i < end; ++i) box.grow(ctx.items[i].centroid);
-  return box;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::uint32_t>(begin, end, kParallelGrain), Box3{},
+      [&](const auto& block, Box3 box) {
+        for (std::uint32_t i = block.begin(); i < block.end(); ++i) box.grow(ctx.items[i].centroid);
+        return box;
+      },
+      [](Box3 a, const Box3& b) {
+        a.grow(b);
+        return a;
+      });
 }
 
 // Halving split by position in the order array: always makes progress.
@@ -84,41 +94,77 @@ std::uint32_t split_bih(BuildContext& ctx, const Range& r, Range& left, Range& r
 }
 
 struct Bin {
-  Box3 box;
+  Bounds4Builder box;
   std::uint32_t count = 0;
 };
+
+// Half the surface area of the tets binned so far (zero while none are).
+float binned_area(const Bounds4Builder& box, std::uint32_t count) {
+  return count ? half_area(box.bounds()) : 0.0f;
+}
+using AxisBins = std::array<std::array<Bin, kSahBins>, 3>;
+
+// The bins of all three axes in one pass over the range, in parallel for the large ranges of
+// the top levels (bins merge by exact min, max and sums, so the result is the same however the
+// range is cut).
+AxisBins bin_centroids(const BuildContext& ctx, const Range& r, const Box3& cb) {
+  float scale[3];
+  for (int a = 0; a < 3; ++a) {
+    const float extent = cb.hi[a] - cb.lo[a];
+    scale[a] = extent > 0 ? kSahBins / extent : 0.0f;
+  }
+  auto fill = [&](std::uint32_t begin, std::uint32_t end, AxisBins& bins) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const BuildItem& item = ctx.items[i];
+      const Bounds4& box = ctx.tet_boxes[item.tet];
+      for (int a = 0; a < 3; ++a) {
+        const int b =
+            std::min(kSahBins - 1, static_cast<int>((item.centroid[a] - cb.lo[a]) * scale[a]));
+        bins[a][b].box.grow(box);
+        ++bins[a][b].count;
+      }
+    }
+  };
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::uint32_t>(r.begin, r.end, kParallelGrain), AxisBins{},
+      [&](const auto& block, AxisBins bins) {
+        fill(block.begin(), block.end(), bins);
+        return bins;
+      },
+      [](AxisBins a, const AxisBins& b) {
+        for (int axis = 0; axis < 3; ++axis)
+          for (int k = 0; k < kSahBins; ++k) {
+            a[axis][k].box.grow(b[axis][k].box.bounds());
+            a[axis][k].count += b[axis][k].count;
+          }
+        return a;
+      });
+}
 
 // Binned SAH: the split plane between bins with the lowest area-weighted count.
 std::uint32_t split_sah(BuildContext& ctx, const Range& r, Range& left, Range& right) {
   const Box3 cb = centroid_bounds(ctx, r.begin, r.end);
+  if (r.depth >= kObjectMedianDepth) return split_object_median(r, left, right);
+  const AxisBins all_bins = bin_centroids(ctx, r, cb);
   float best_cost = std::numeric_limits<float>::infinity();
   int best_axis = -1, best_bin = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const float extent = cb.hi[axis] - cb.lo[axis];
-    if (!(extent > 0) || r.depth >= kObjectMedianDepth) continue;
-    const float scale = kSahBins / extent;
-    Bin bins[kSahBins];
-    for (std::uint32_t i = r.begin; i < r.end; ++i) {
-      const BuildItem& item = ctx.items[i];
-      const int b =
-          std::min(kSahBins - 1, static_cast<int>((item.centroid[axis] - cb.lo[axis]) * scale));
-      bins[b].box.grow(ctx.tet_boxes[item.tet]);
-      ++bins[b].count;
-    }
+    if (!(cb.hi[axis] - cb.lo[axis] > 0)) continue;
+    const auto& bins = all_bins[axis];
     float right_cost[kSahBins];
-    Box3 acc;
+    Bounds4Builder acc;
     std::uint32_t n = 0;
     for (int b = kSahBins - 1; b > 0; --b) {
-      acc.grow(bins[b].box);
+      acc.grow(bins[b].box.bounds());
       n += bins[b].count;
-      right_cost[b] = acc.half_area() * static_cast<float>(n);
+      right_cost[b] = binned_area(acc, n) * static_cast<float>(n);
     }
-    acc = Box3{};
+    acc = Bounds4Builder{};
     n = 0;
     for (int b = 0; b < kSahBins - 1; ++b) {
-      acc.grow(bins[b].box);
+      acc.grow(bins[b].box.bounds());
       n += bins[b].count;
-      const float cost = acc.half_area() * static_cast<float>(n) + right_cost[b + 1];
+      const float cost = binned_area(acc, n) * static_cast<float>(n) + right_cost[b + 1];
       if (n > 0 && n < r.size() && cost < best_cost) {
         best_cost = cost;
         best_axis = axis;
@@ -174,28 +220,15 @@ void prepare_inputs(const TetVolume& volume, BuildContext& ctx) {
   if (ctx.options.builder == BvhBuilder::sah) ctx.tet_boxes.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& block) {
     for (std::size_t t = block.begin(); t != block.end(); ++t) {
-      Box3 box;
-      for (std::int32_t v : volume.tets[t].v) {
-        const Vertex& p = volume.vertices[v];
-        box.grow(Vec3f{p.x, p.y, p.z});
-      }
-      ctx.items[t] = {0.5f * (box.lo + box.hi), static_cast<std::uint32_t>(t)};
+      Bounds4Builder builder;
+      builder.grow(volume, volume.tets[t]);
+      const Bounds4 box = builder.bounds();
+      const Vec3f centroid{0.5f * (box.lo[0] + box.hi[0]), 0.5f * (box.lo[1] + box.hi[1]),
+                           0.5f * (box.lo[2] + box.hi[2])};
+      ctx.items[t] = {centroid, static_cast<std::uint32_t>(t)};
       if (!ctx.tet_boxes.empty()) ctx.tet_boxes[t] = box;
     }
   });
-}
-
-Box3 all_centroid_bounds(const BuildContext& ctx) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, ctx.items.size()), Box3{},
-      [&](const auto& block, Box3 box) {
-        for (std::size_t t = block.begin(); t != block.end(); ++t) box.grow(ctx.items[t].centroid);
-        return box;
-      },
-      [](Box3 a, const Box3& b) {
-        a.grow(b);
-        return a;
-      });
 }
 
 struct Pending {
@@ -210,7 +243,7 @@ std::vector<Pending> build_top(BuildContext& ctx, std::vector<BvhNode>& top,
   const auto n = static_cast<std::uint32_t>(ctx.items.size());
   const std::uint32_t subtree_size = std::max<std::uint32_t>(
       static_cast<std::uint32_t>(std::max(1, ctx.options.leaf_size)), n / kTargetSubtrees);
-  std::vector<Pending> level{{0, Range{0, n, all_centroid_bounds(ctx), 0}}}, subtrees;
+  std::vector<Pending> level{{0, Range{0, n, centroid_bounds(ctx, 0, n), 0}}}, subtrees;
   top.resize(1);
   while (!level.empty()) {
     std::vector<Pending> to_split;
