@@ -17,8 +17,7 @@ render::UpdateResult FieldVolume::update(const VolumeInputs& in, const ChangeEpo
     keep_at_load_ = keep_;
     loaded_ = true;
   } else if (stale(now)) {
-    const render::StepChanges changes{now.geometry != seen_.geometry, now.fields != seen_.fields,
-                                      false};
+    const render::StepChanges changes{now.geometry != seen_.geometry, now.fields != seen_.fields};
     result = render::update_volume(volume_, bvh_, in.points, in.field, changes, policy);
   }
   seen_ = now;

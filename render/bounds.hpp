@@ -28,12 +28,6 @@ struct Box3 {
     const Vec3f e = hi - lo;
     return e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
   }
-  // Half the surface area; zero for an empty box.
-  float half_area() const {
-    if (!(lo.x <= hi.x)) return 0;
-    const Vec3f e = hi - lo;
-    return e.x * e.y + e.y * e.z + e.z * e.x;
-  }
 };
 
 // A 4D bound being grown, in registers.

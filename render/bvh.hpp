@@ -41,8 +41,10 @@ struct Bvh {
   };
   std::vector<Subtree> subtrees;
   std::vector<std::uint32_t> top_nodes_bottom_up;  // inner nodes above the subtrees
-  double sah_cost_at_build = 0;                    // for the rebuild policy
-  double sah_cost_now = 0;                         // after the last refit
+  // SAH cost (traversal and tet cost 1, normalised by the root's surface area) at the last
+  // build and after the last refit: the quality measure of the rebuild policy.
+  double sah_cost_at_build = 0;
+  double sah_cost_now = 0;
 
   bool empty() const { return nodes.empty(); }
   std::size_t bytes() const { return nodes.capacity() * sizeof(BvhNode); }
@@ -52,10 +54,6 @@ struct Bvh {
 // then fits the node bounds (refit_bvh). The tree and its layout depend only on the data, not
 // on the thread count. Parallel with oneTBB within the calling task arena.
 Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options);
-
-// SAH cost of the tree with the node bounds it has now (traversal cost 1, tet cost 1,
-// normalised by the root's surface area): the quality measure of the rebuild policy.
-double sah_cost(const Bvh& bvh);
 
 // Refits from the vertex store as it is: all 4D bounds (geometry = true) or only the scalar
 // ranges. Parallel over the recorded subtrees, then the top nodes; bitwise independent of the

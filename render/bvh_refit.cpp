@@ -79,15 +79,6 @@ void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry) {
   }
 }
 
-double sah_cost(const Bvh& bvh) {
-  if (bvh.empty()) return 0;
-  double cost = 0;
-  for (const BvhNode& node : bvh.nodes)
-    cost += static_cast<double>(half_area(node.bounds)) * (node.is_leaf() ? node.count : 1);
-  const float root_area = half_area(bvh.nodes[0].bounds);
-  return root_area > 0 ? cost / root_area : 0.0;
-}
-
 Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
   Bounds4Builder b;
   b.grow(volume, tet);

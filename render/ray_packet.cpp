@@ -21,8 +21,6 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
                   const PixelDirections& directions, Vec3d origin, int x0, int y0) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   packet.eye = static_cast<Vec3f>(frame.eye - origin);
-  packet.x0 = x0;
-  packet.y0 = y0;
   const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
   for (int row = 0; row < S; ++row) {
     const bool row_valid = y0 + row <= y1;

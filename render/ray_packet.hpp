@@ -36,7 +36,6 @@ struct alignas(64) RayPacket {
   // row = row_center - row_scale * dot(p, up) / dot(p, forward).
   Vec3f forward, up;
   float row_center = 0, row_scale = 0;
-  int x0 = 0, y0 = 0;  // pixel of ray 0
 };
 
 // Fills `packet` with the rays of the tile whose top-left pixel is (x0, y0).

@@ -43,14 +43,10 @@ inline Floats vmin(Floats a, Floats b) { return xsimd::min(a, b); }
 inline float vmin(float a, float b) { return a < b ? a : b; }
 inline Floats vmax(Floats a, Floats b) { return xsimd::max(a, b); }
 inline float vmax(float a, float b) { return a > b ? a : b; }
-inline Floats vabs(Floats a) { return xsimd::abs(a); }
-inline float vabs(float a) { return a < 0 ? -a : a; }
 inline Floats select(Mask m, Floats a, Floats b) { return xsimd::select(m, a, b); }
 inline float select(bool m, float a, float b) { return m ? a : b; }
 inline bool any(Mask m) { return xsimd::any(m); }
 inline bool any(bool m) { return m; }
-inline bool all(Mask m) { return xsimd::all(m); }
-inline bool all(bool m) { return m; }
 
 inline Mask either(Mask a, Mask b) { return a | b; }
 inline bool either(bool a, bool b) { return a || b; }

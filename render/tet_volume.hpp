@@ -24,12 +24,12 @@ struct Tet {
 };
 
 struct TetVolume {
-  Vec3d origin{};                   // world = origin + local
+  Vec3d origin{};  // world = origin + local
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> vertex_source;  // caller's point index of vertices[k]
-  std::vector<Tet> tets;            // in BVH leaf order once a BVH is built
-  std::vector<std::uint32_t> tet_ids;  // caller's id of tets[k]
-  std::vector<float> color_field;   // optional per-vertex field to color by (empty: none)
+  std::vector<Tet> tets;                     // in BVH leaf order once a BVH is built
+  std::vector<std::uint32_t> tet_ids;        // caller's id of tets[k]
+  std::vector<float> color_field;            // optional per-vertex field to color by (empty: none)
 
   std::size_t bytes() const {
     return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +

@@ -45,10 +45,10 @@ struct UpdateResult {
   double rebuild_ms = 0;
 };
 
+// What changed on the same topology (a topology change goes through load_volume).
 struct StepChanges {
   bool geometry = false;
   bool field = false;
-  bool topology = false;
 };
 
 // Sets the volume's topology from `tets` (4 indices per tet, already validated to lie in

@@ -11,8 +11,8 @@
 namespace tetray::bench {
 namespace {
 
-constexpr render::StepChanges kFieldOnly{false, true, false};
-constexpr render::StepChanges kGeometryAndField{true, true, false};
+constexpr render::StepChanges kFieldOnly{false, true};
+constexpr render::StepChanges kGeometryAndField{true, true};
 
 struct StepArrays {
   std::vector<double> points;

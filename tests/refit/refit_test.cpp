@@ -17,7 +17,6 @@ using render::Framebuffer;
 using render::IsoSurface;
 using render::PointSource;
 using render::ScalarKind;
-using render::StepChanges;
 
 PointSource points_of(const std::vector<double>& xyz) {
   return {xyz.data(), ScalarKind::f64, nullptr, ScalarKind::f64, xyz.size() / 3};
@@ -71,9 +70,8 @@ TEST(Refit, RefitMatchesRebuildOverGyroidTwistSteps) {
   const Camera camera = benchmark_camera(scaled_side(200));
   for (double t : {0.1, 0.2, 0.3, 0.4}) {
     series.at(t);
-    const auto update =
-        render::update_volume(volume, bvh, points_of(series.points), field_of(series.field),
-                              {true, true, false}, never_rebuild);
+    const auto update = render::update_volume(volume, bvh, points_of(series.points),
+                                              field_of(series.field), {true, true}, never_rebuild);
     EXPECT_EQ(update.kind, BvhUpdateKind::refit);
     EXPECT_LT(update.quality_ratio, 1.2) << "t = " << t;
     const Framebuffer refit = render::trace(volume, bvh, camera, kSurfaces, {});
@@ -99,7 +97,7 @@ TEST(Refit, FieldOnlyUpdateMatchesRebuild) {
     later[p] = std::sin(4 * old_points[3 * p] + 1.3) * std::cos(4 * old_points[3 * p + 1]) + 0.2;
   const auto before = scene.bvh.nodes;
   const auto update = render::update_volume(scene.volume, scene.bvh, points_of(old_points),
-                                            field_of(later), {false, true, false}, {});
+                                            field_of(later), {false, true}, {});
   EXPECT_EQ(update.kind, BvhUpdateKind::field_only);
   for (std::size_t i = 0; i < before.size(); ++i)
     for (int a = 0; a < 3; ++a) {
@@ -118,7 +116,7 @@ TEST(Refit, NothingChangedSkipsTheBvh) {
   RenderScene scene = load_scene(series.points, series.box.tets, series.field);
   const auto before = scene.bvh.nodes;
   const auto update = render::update_volume(scene.volume, scene.bvh, points_of(series.points),
-                                            field_of(series.field), {false, false, false}, {});
+                                            field_of(series.field), {false, false}, {});
   EXPECT_EQ(update.kind, BvhUpdateKind::none);
   EXPECT_EQ(update.ingest_refit_ms, 0.0);
   EXPECT_EQ(
@@ -145,7 +143,7 @@ TEST(Refit, ExtremeDeformationRebuildsAndStaysExact) {
     points[3 * p + 1] = s * folded + c * y + 8.0;
   }
   const auto update = render::update_volume(scene.volume, scene.bvh, points_of(points),
-                                            field_of(field), {true, true, false}, {});
+                                            field_of(field), {true, true}, {});
   EXPECT_GT(update.quality_ratio, 1.5);
   EXPECT_EQ(update.kind, BvhUpdateKind::rebuild);
   EXPECT_EQ(scene.bvh.sah_cost_now, scene.bvh.sah_cost_at_build) << "a fresh tree";
@@ -173,7 +171,7 @@ TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
       Series next(14);
       next.at(0.3);
       render::update_volume(scene.volume, scene.bvh, points_of(next.points), field_of(next.field),
-                            {true, true, false}, {});
+                            {true, true}, {});
       results.push_back(scene.bvh.nodes);
     });
   }
@@ -199,7 +197,7 @@ TEST(StepStore, ReplaysStoredStepsAndKeepsToItsBudget) {
   for (int step = 0; step < 4; ++step) {
     series.at(0.1 * step);
     render::update_volume(scene.volume, scene.bvh, points_of(series.points), field_of(series.field),
-                          {true, true, false}, {});
+                          {true, true}, {});
     live.push_back(render::trace(scene.volume, scene.bvh, camera, kSurfaces, {}));
     EXPECT_EQ(store.store(step, scene.volume, scene.bvh), step < 3) << "step " << step;
   }
