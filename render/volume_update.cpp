@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "render/point_read.hpp"
+#include "render/value_bounds.hpp"
 
 namespace tetray::render {
 namespace {
@@ -17,47 +18,25 @@ double ms_since(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
-struct Box3d {
-  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-  double hi[3] = {-std::numeric_limits<double>::infinity(),
-                  -std::numeric_limits<double>::infinity(),
-                  -std::numeric_limits<double>::infinity()};
-  void grow(const double p[3]) {
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(p[a])) return;
-    }
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a]);
-    }
-  }
-  void grow(const Box3d& b) {
-    grow(b.lo);
-    grow(b.hi);
-  }
-};
-
 Vec3d center_of_points(const PointSource& points) {
-  const Box3d box = with_points(points, [&](const auto* xyz, const auto* disp) {
+  const BoundingBox box = with_points(points, [&](const auto* xyz, const auto* disp) {
     return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, points.count), Box3d{},
-        [&](const auto& block, Box3d b) {
+        tbb::blocked_range<std::size_t>(0, points.count), BoundingBox{},
+        [&](const auto& block, BoundingBox b) {
           for (std::size_t i = block.begin(); i != block.end(); ++i) {
             double p[3];
             point_position(xyz, disp, i, p);
-            b.grow(p);
+            b.include(Vec3d{p[0], p[1], p[2]});
           }
           return b;
         },
-        [](Box3d a, const Box3d& b) {
-          a.grow(b);
+        [](BoundingBox a, const BoundingBox& b) {
+          a.merge(b);
           return a;
         });
   });
-  if (!(box.lo[0] <= box.hi[0])) return {};
-  return {0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
-          0.5 * (box.lo[2] + box.hi[2])};
+  if (box.empty()) return {};
+  return 0.5 * (box.lo() + box.hi());
 }
 
 // Converts the changed arrays into the vertex store in one pass; vertex k reads the caller's
