@@ -29,7 +29,7 @@ enum class BvhBuilder { bih, sah };
 
 struct BvhBuildOptions {
   BvhBuilder builder = BvhBuilder::bih;
-  int leaf_size = 8;  // maximum tets per leaf
+  int leaf_size = 16;  // maximum tets per leaf
 };
 
 struct Bvh {
@@ -41,13 +41,20 @@ struct Bvh {
   };
   std::vector<Subtree> subtrees;
   std::vector<std::uint32_t> top_nodes_bottom_up;  // inner nodes above the subtrees
+  // The distinct vertices of each leaf's tets, read by the refit (leaf_vertices.hpp): node i's
+  // are leaf_vertices[leaf_vertex_begin[i], leaf_vertex_begin[i + 1]), none for inner nodes.
+  std::vector<std::uint32_t> leaf_vertex_begin;
+  std::vector<std::uint32_t> leaf_vertices;
   // SAH cost (traversal and tet cost 1, normalised by the root's surface area) at the last
   // build and after the last refit: the quality measure of the rebuild policy.
   double sah_cost_at_build = 0;
   double sah_cost_now = 0;
 
   bool empty() const { return nodes.empty(); }
-  std::size_t bytes() const { return nodes.capacity() * sizeof(BvhNode); }
+  std::size_t bytes() const {
+    return nodes.capacity() * sizeof(BvhNode) +
+           (leaf_vertex_begin.capacity() + leaf_vertices.capacity()) * sizeof(std::uint32_t);
+  }
 };
 
 // Builds the BVH over volume.tets and reorders volume.tets and volume.tet_ids into leaf order,

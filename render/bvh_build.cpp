@@ -14,6 +14,7 @@
 
 #include "render/bounds.hpp"
 #include "render/bvh.hpp"
+#include "render/leaf_vertices.hpp"
 #include "render/vertex_order.hpp"
 
 namespace tetray::render {
@@ -328,6 +329,7 @@ Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options) {
   lay_out(top, locals, pending, bvh);
   apply_order(volume, ctx.items);
   renumber_vertices(volume, bvh);
+  list_leaf_vertices(volume, bvh);
   refit_bvh(volume, bvh, true);
   bvh.sah_cost_at_build = bvh.sah_cost_now;
   return bvh;

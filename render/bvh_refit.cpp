@@ -1,8 +1,9 @@
 // Refitting the implicit BVH for a new time step (seed 000 §6.2, Schema II): the recorded
-// subtrees are refit in parallel, children before parents, then the few top nodes. Field-only
-// refits touch only the scalar ranges. The SAH cost of the refit tree, the quality measure of
-// the rebuild policy, is summed on the way in a fixed order, so it too is independent of the
-// thread count.
+// subtrees are refit in parallel, children before parents, then the few top nodes. A leaf's
+// bound is that of its distinct vertices (leaf_vertices.hpp), read once each instead of once
+// per tet corner. Field-only refits touch only the scalar ranges. The SAH cost of the refit tree,
+// the quality measure of the rebuild policy, is summed on the way in a fixed order, so it too is
+// independent of the thread count.
 #include <tbb/parallel_for.h>
 
 #include <limits>
@@ -23,10 +24,10 @@ void set_bounds(BvhNode& node, const Bounds4& b, int first_axis) {
 }
 
 template <bool geometry>
-void fit_leaf(const TetVolume& volume, BvhNode& node) {
+void fit_leaf(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
   Bounds4Builder b;
-  for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
-    b.grow(volume, volume.tets[t]);
+  for (std::uint32_t k = bvh.leaf_vertex_begin[i]; k < bvh.leaf_vertex_begin[i + 1]; ++k)
+    b.grow(volume.vertices[bvh.leaf_vertices[k]]);
   set_bounds(node, b.bounds(), geometry ? 0 : 3);
 }
 
@@ -38,15 +39,16 @@ void fit_inner(std::vector<BvhNode>& nodes, BvhNode& node) {
   set_bounds(node, b.bounds(), geometry ? 0 : 3);
 }
 
+// Fits node i and returns its term of the SAH cost (needed only when the geometry changed).
 template <bool geometry>
-double fit_node(const TetVolume& volume, std::vector<BvhNode>& nodes, std::uint32_t i) {
-  BvhNode& node = nodes[i];
+double fit_node(const TetVolume& volume, Bvh& bvh, std::uint32_t i) {
+  BvhNode& node = bvh.nodes[i];
   if (node.is_leaf()) {
-    fit_leaf<geometry>(volume, node);
-    return static_cast<double>(half_area(node.bounds)) * node.count;
+    fit_leaf<geometry>(volume, bvh, i, node);
+    return geometry ? static_cast<double>(half_area(node.bounds)) * node.count : 0.0;
   }
-  fit_inner<geometry>(nodes, node);
-  return half_area(node.bounds);
+  fit_inner<geometry>(bvh.nodes, node);
+  return geometry ? half_area(node.bounds) : 0.0;
 }
 
 template <bool geometry>
@@ -55,13 +57,12 @@ void refit(const TetVolume& volume, Bvh& bvh) {
   tbb::parallel_for(std::size_t{0}, bvh.subtrees.size(), [&](std::size_t s) {
     const Bvh::Subtree& st = bvh.subtrees[s];
     double cost = 0;
-    for (std::uint32_t i = st.end; i-- > st.begin;)
-      cost += fit_node<geometry>(volume, bvh.nodes, i);
-    subtree_cost[s] = cost + fit_node<geometry>(volume, bvh.nodes, st.root);
+    for (std::uint32_t i = st.end; i-- > st.begin;) cost += fit_node<geometry>(volume, bvh, i);
+    subtree_cost[s] = cost + fit_node<geometry>(volume, bvh, st.root);
   });
   double cost = 0;
   for (double c : subtree_cost) cost += c;
-  for (std::uint32_t i : bvh.top_nodes_bottom_up) cost += fit_node<geometry>(volume, bvh.nodes, i);
+  for (std::uint32_t i : bvh.top_nodes_bottom_up) cost += fit_node<geometry>(volume, bvh, i);
   if (geometry) {
     const float root_area = half_area(bvh.nodes[0].bounds);
     bvh.sah_cost_now = root_area > 0 ? cost / root_area : 0.0;

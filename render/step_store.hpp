@@ -17,8 +17,8 @@ class StepStore {
  public:
   explicit StepStore(std::size_t budget_bytes) : budget_(budget_bytes) {}
 
-  // Copies the step's volume and BVH; returns false (storing nothing) when the copy would
-  // exceed the budget.
+  // Copies what tracing the step needs (vertices, tets, ids, nodes); returns false (storing
+  // nothing) when the copy would exceed the budget.
   bool store(std::int64_t step, const TetVolume& volume, const Bvh& bvh);
 
   struct Entry {
@@ -32,10 +32,6 @@ class StepStore {
   std::size_t steps() const { return entries_.size(); }
 
  private:
-  static std::size_t bytes_of(const TetVolume& volume, const Bvh& bvh) {
-    return volume.bytes() + bvh.bytes();
-  }
-
   std::size_t budget_;
   std::size_t bytes_ = 0;
   std::map<std::int64_t, Entry> entries_;

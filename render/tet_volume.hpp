@@ -4,11 +4,13 @@
 // contiguous range, and the vertices in the order the leaves first use them (seed 001's point:
 // neighbours in the tree are neighbours in memory), keeping only vertices some tet uses.
 // `tet_ids` keeps each tet's id in the caller's numbering (the deterministic tie rule) and
-// `vertex_source` each vertex's index in the caller's point arrays (empty: the same index).
+// `point_vertex` the vertex each of the caller's points became (empty: the same index), so a
+// new step's arrays are read in the caller's order and scattered into the store.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "render/vec.hpp"
@@ -19,6 +21,9 @@ struct alignas(16) Vertex {
   float x, y, z, f;
 };
 
+// point_vertex entry of a point that no tet uses.
+inline constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+
 struct Tet {
   std::array<std::int32_t, 4> v;
 };
@@ -26,14 +31,14 @@ struct Tet {
 struct TetVolume {
   Vec3d origin{};  // world = origin + local
   std::vector<Vertex> vertices;
-  std::vector<std::uint32_t> vertex_source;  // caller's point index of vertices[k]
-  std::vector<Tet> tets;                     // in BVH leaf order once a BVH is built
-  std::vector<std::uint32_t> tet_ids;        // caller's id of tets[k]
-  std::vector<float> color_field;            // optional per-vertex field to color by (empty: none)
+  std::vector<std::uint32_t> point_vertex;  // vertex of the caller's point p, or kNoVertex
+  std::vector<Tet> tets;                    // in BVH leaf order once a BVH is built
+  std::vector<std::uint32_t> tet_ids;       // caller's id of tets[k]
+  std::vector<float> color_field;           // optional per-vertex field to color by (empty: none)
 
   std::size_t bytes() const {
     return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +
-           (tet_ids.capacity() + vertex_source.capacity()) * sizeof(std::uint32_t) +
+           (tet_ids.capacity() + point_vertex.capacity()) * sizeof(std::uint32_t) +
            color_field.capacity() * sizeof(float);
   }
 };

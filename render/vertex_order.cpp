@@ -67,26 +67,29 @@ void renumber_vertices(TetVolume& volume, const Bvh& bvh) {
         owned[s].push_back(static_cast<std::uint32_t>(v));
       }
   });
-  // 3. Concatenate, then rewrite the tets.
+  // 3. Concatenate, then rewrite the tets and the points' vertices.
   std::vector<std::uint32_t> offset(ranges.size() + 1, 0), order;
   for (std::size_t s = 0; s < ranges.size(); ++s)
     offset[s + 1] = offset[s] + static_cast<std::uint32_t>(owned[s].size());
   order.reserve(offset.back());
   for (const auto& list : owned) order.insert(order.end(), list.begin(), list.end());
+  auto renumbered = [&](std::size_t v) {
+    const std::uint32_t o = owner[v].load(std::memory_order_relaxed);
+    return o == kUnset ? kNoVertex : offset[o] + new_index[v];
+  };
   tbb::parallel_for(std::size_t{0}, ranges.size(), [&](std::size_t s) {
     for (std::uint32_t t = ranges[s].begin; t < ranges[s].end; ++t)
-      for (std::int32_t& v : volume.tets[t].v) {
-        const std::size_t o = owner[v].load(std::memory_order_relaxed);
-        v = static_cast<std::int32_t>(offset[o] + new_index[v]);
-      }
+      for (std::int32_t& v : volume.tets[t].v) v = static_cast<std::int32_t>(renumbered(v));
   });
   permute(volume.vertices, order);
   if (volume.color_field.size() == count) permute(volume.color_field, order);
-  if (volume.vertex_source.size() == count) {
-    permute(volume.vertex_source, order);
-  } else {
-    volume.vertex_source = std::move(order);
-  }
+  const bool first_numbering = volume.point_vertex.empty();  // vertex p is still point p
+  if (first_numbering) volume.point_vertex.resize(count);
+  tbb::parallel_for(std::size_t{0}, volume.point_vertex.size(), [&](std::size_t p) {
+    const std::uint32_t old =
+        first_numbering ? static_cast<std::uint32_t>(p) : volume.point_vertex[p];
+    volume.point_vertex[p] = old == kNoVertex ? kNoVertex : renumbered(old);
+  });
 }
 
 }  // namespace tetray::render

@@ -9,7 +9,7 @@
 namespace tetray::render {
 
 // Renumbers volume.vertices (and color_field), rewrites the tets, drops vertices no tet uses,
-// and composes volume.vertex_source. Parallel over the BVH's subtrees; the result does not
+// and composes volume.point_vertex. Parallel over the BVH's subtrees; the result does not
 // depend on the thread count.
 void renumber_vertices(TetVolume& volume, const Bvh& bvh);
 

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -39,29 +40,39 @@ Vec3d center_of_points(const PointSource& points) {
   return 0.5 * (box.lo() + box.hi());
 }
 
-// Converts the changed arrays into the vertex store in one pass; vertex k reads the caller's
-// point vertex_source[k] (k itself before the first build).
+// Calls visit(p, k) for each of the caller's points p and the vertex k it became, in the
+// caller's order and in parallel: the caller's arrays are read front to back once and the
+// store written scattered (within its leaf-local order), which is cheaper than gathering.
+template <typename Visit>
+void for_each_point_vertex(const TetVolume& volume, std::size_t point_count, Visit&& visit) {
+  const bool renumbered = !volume.point_vertex.empty();
+  const std::size_t count =
+      renumbered ? volume.point_vertex.size() : std::min(point_count, volume.vertices.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& block) {
+    for (std::size_t p = block.begin(); p != block.end(); ++p) {
+      const std::size_t k = renumbered ? volume.point_vertex[p] : p;
+      if (k != kNoVertex) visit(p, k);
+    }
+  });
+}
+
+// Converts the changed arrays into the vertex store in one pass.
 void ingest(TetVolume& volume, const PointSource& points, const FieldSource& field, bool geometry,
             bool values) {
-  const bool renumbered = !volume.vertex_source.empty();
-  if (!renumbered) volume.vertices.resize(points.count);
+  if (volume.point_vertex.empty()) volume.vertices.resize(points.count);
   const Vec3d o = volume.origin;
   auto convert = [&](const auto* xyz, const auto* disp, const auto* f) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, volume.vertices.size()),
-                      [&](const auto& block) {
-                        for (std::size_t k = block.begin(); k != block.end(); ++k) {
-                          const std::size_t i = renumbered ? volume.vertex_source[k] : k;
-                          Vertex& v = volume.vertices[k];
-                          if (geometry) {
-                            double p[3];
-                            point_position(xyz, disp, i, p);
-                            v.x = static_cast<float>(p[0] - o.x);
-                            v.y = static_cast<float>(p[1] - o.y);
-                            v.z = static_cast<float>(p[2] - o.z);
-                          }
-                          if (values) v.f = f ? static_cast<float>(f[i]) : 0.0f;
-                        }
-                      });
+    for_each_point_vertex(volume, points.count, [&](std::size_t p, std::size_t k) {
+      Vertex& v = volume.vertices[k];
+      if (geometry) {
+        double xyz_p[3];
+        point_position(xyz, disp, p, xyz_p);
+        v.x = static_cast<float>(xyz_p[0] - o.x);
+        v.y = static_cast<float>(xyz_p[1] - o.y);
+        v.z = static_cast<float>(xyz_p[2] - o.z);
+      }
+      if (values) v.f = f ? static_cast<float>(f[p]) : 0.0f;
+    });
   };
   with_points(points, [&](const auto* xyz, const auto* disp) {
     if (!field.values) return convert(xyz, disp, static_cast<const float*>(nullptr));
@@ -114,7 +125,7 @@ UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64
     volume.tet_ids.push_back(ids.empty() ? static_cast<std::uint32_t>(t) : ids[t]);
   }
   volume.origin = origin ? *origin : center_of_points(points);
-  volume.vertex_source.clear();
+  volume.point_vertex.clear();
   volume.color_field.clear();
   ingest(volume, points, field, true, true);
   const double ingest_ms = ms_since(start);
@@ -148,9 +159,8 @@ void load_color_field(TetVolume& volume, const FieldSource& field) {
   volume.color_field.resize(volume.vertices.size());
   with_scalar(field.kind, [&](auto tag) {
     const auto* values = static_cast<const decltype(tag)*>(field.values);
-    tbb::parallel_for(std::size_t{0}, volume.vertices.size(), [&](std::size_t k) {
-      const std::size_t i = volume.vertex_source.empty() ? k : volume.vertex_source[k];
-      volume.color_field[k] = static_cast<float>(values[i]);
+    for_each_point_vertex(volume, field.count, [&](std::size_t p, std::size_t k) {
+      volume.color_field[k] = static_cast<float>(values[p]);
     });
   });
 }

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <numeric>
+#include <random>
 
 #include "reference_comparison.hpp"
 #include "render/step_store.hpp"
@@ -56,6 +60,97 @@ struct Series {
   explicit Series(int n) : box(jittered_box(n)) {}
   void at(double t) { deform_gyroid_twist(box, t, points, field); }
 };
+
+// After a build each leaf lists the distinct vertices of its tets, once each, and inner nodes
+// list none; a refit from the lists gives every leaf the bound of its tets.
+TEST(Refit, LeafVertexListsHoldEachLeafsDistinctVertices) {
+  Series series(10);
+  series.at(0.2);
+  const RenderScene scene = load_scene(series.points, series.box.tets, series.field);
+  const render::Bvh& bvh = scene.bvh;
+  ASSERT_EQ(bvh.leaf_vertex_begin.size(), bvh.nodes.size() + 1);
+  ASSERT_EQ(bvh.leaf_vertex_begin.back(), bvh.leaf_vertices.size());
+  std::size_t leaves = 0;
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const render::BvhNode& node = bvh.nodes[i];
+    std::vector<std::uint32_t> listed(bvh.leaf_vertices.begin() + bvh.leaf_vertex_begin[i],
+                                      bvh.leaf_vertices.begin() + bvh.leaf_vertex_begin[i + 1]);
+    if (!node.is_leaf()) {
+      EXPECT_TRUE(listed.empty()) << "inner node " << i;
+      continue;
+    }
+    ++leaves;
+    std::vector<std::uint32_t> used;
+    render::Bounds4 walked = render::tet_bounds(scene.volume, scene.volume.tets[node.first]);
+    for (std::uint32_t t = node.first; t < node.first + node.count; ++t) {
+      for (std::int32_t v : scene.volume.tets[t].v) used.push_back(static_cast<std::uint32_t>(v));
+      const render::Bounds4 b = render::tet_bounds(scene.volume, scene.volume.tets[t]);
+      for (int a = 0; a < 4; ++a) {
+        walked.lo[a] = std::min(walked.lo[a], b.lo[a]);
+        walked.hi[a] = std::max(walked.hi[a], b.hi[a]);
+      }
+    }
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, used) << "leaf " << i;
+    for (int a = 0; a < 4; ++a) {
+      EXPECT_EQ(node.bounds.lo[a], walked.lo[a]) << "leaf " << i << " axis " << a;
+      EXPECT_EQ(node.bounds.hi[a], walked.hi[a]) << "leaf " << i << " axis " << a;
+    }
+  }
+  EXPECT_GT(leaves, 1u);
+}
+
+// A new step is read in the caller's point order and scattered to the vertices the points
+// became: with the points shuffled and some left unused, every used point's new position and
+// value land on its vertex, and unused points on none.
+TEST(Refit, NewStepLandsOnEachPointsVertex) {
+  Series series(6);
+  series.at(0.0);
+  const std::size_t used_points = series.points.size() / 3;
+  // Shuffled order, plus unused points in between.
+  std::vector<std::int64_t> slot(used_points);
+  std::iota(slot.begin(), slot.end(), 0);
+  std::mt19937 rng(7);
+  std::shuffle(slot.begin(), slot.end(), rng);
+  for (auto& s : slot) s = 2 * s + 1;  // even slots stay unused
+  const std::size_t point_count = 2 * used_points + 1;
+  auto placed = [&](const std::vector<double>& xyz, const std::vector<double>& f) {
+    std::pair<std::vector<double>, std::vector<double>> out{
+        std::vector<double>(3 * point_count, 0.5), std::vector<double>(point_count, -7.0)};
+    for (std::size_t p = 0; p < used_points; ++p) {
+      for (int a = 0; a < 3; ++a) out.first[3 * slot[p] + a] = xyz[3 * p + a];
+      out.second[slot[p]] = f[p];
+    }
+    return out;
+  };
+  std::vector<std::int64_t> tets = series.box.tets;
+  for (auto& v : tets) v = slot[v];
+  const auto [points0, field0] = placed(series.points, series.field);
+  RenderScene scene = load_scene(points0, tets, field0);
+  const auto& map = scene.volume.point_vertex;
+  ASSERT_EQ(map.size(), point_count);
+  series.at(0.3);
+  const auto [points1, field1] = placed(series.points, series.field);
+  render::update_volume(scene.volume, scene.bvh, points_of(points1), field_of(field1), {true, true},
+                        {});
+  std::size_t mapped = 0;
+  for (std::size_t p = 0; p < point_count; ++p) {
+    if (p % 2 == 0) {
+      EXPECT_EQ(map[p], render::kNoVertex) << "unused point " << p;
+      continue;
+    }
+    ASSERT_LT(map[p], scene.volume.vertices.size()) << "point " << p;
+    ++mapped;
+    const render::Vertex& v = scene.volume.vertices[map[p]];
+    const double local[3] = {v.x, v.y, v.z};
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(scene.volume.origin[a] + local[a], points1[3 * p + a], 1e-6) << "point " << p;
+    EXPECT_NEAR(v.f, field1[p], 1e-6) << "point " << p;
+  }
+  EXPECT_EQ(mapped, scene.volume.vertices.size());
+}
 
 TEST(Refit, RefitMatchesRebuildOverGyroidTwistSteps) {
   Series series(12);
@@ -164,6 +259,7 @@ TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
   series.at(0.0);
   const auto& tets = series.box.tets;
   std::vector<std::vector<render::BvhNode>> results;
+  std::vector<std::vector<std::uint32_t>> leaf_lists;
   for (int threads : {1, 2, 8}) {
     tbb::task_arena arena(threads);
     arena.execute([&] {
@@ -173,6 +269,7 @@ TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
       render::update_volume(scene.volume, scene.bvh, points_of(next.points), field_of(next.field),
                             {true, true}, {});
       results.push_back(scene.bvh.nodes);
+      leaf_lists.push_back(scene.bvh.leaf_vertices);
     });
   }
   for (std::size_t k = 1; k < results.size(); ++k) {
@@ -181,17 +278,26 @@ TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
                           results[0].size() * sizeof(render::BvhNode)),
               0)
         << "thread count changed the BVH";
+    EXPECT_EQ(leaf_lists[k], leaf_lists[0]) << "thread count changed the leaf vertex lists";
   }
 }
 
 // Schema I: steps stored while the series runs render afterwards exactly as they did live, and
-// the store refuses a step past its memory budget.
+// the store refuses a step past its memory budget. A stored step leaves out what only a refit
+// reads (the leaf vertex lists, the point -> vertex map).
 TEST(StepStore, ReplaysStoredStepsAndKeepsToItsBudget) {
   Series series(8);
   series.at(0.0);
   RenderScene scene = load_scene(series.points, series.box.tets, series.field);
   const Camera camera = benchmark_camera(scaled_side(96));
-  const std::size_t step_bytes = scene.volume.bytes() + scene.bvh.bytes();
+  render::StepStore probe(std::numeric_limits<std::size_t>::max());
+  ASSERT_TRUE(probe.store(0, scene.volume, scene.bvh));
+  const std::size_t step_bytes = probe.bytes();
+  const std::size_t refit_only_bytes =
+      (scene.volume.point_vertex.size() + scene.bvh.leaf_vertex_begin.size() +
+       scene.bvh.leaf_vertices.size()) *
+      sizeof(std::uint32_t);
+  EXPECT_LE(step_bytes, scene.volume.bytes() + scene.bvh.bytes() - refit_only_bytes);
   render::StepStore store(3 * step_bytes);
   std::vector<Framebuffer> live;
   for (int step = 0; step < 4; ++step) {

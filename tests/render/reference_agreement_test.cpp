@@ -30,7 +30,7 @@ AgreementCounts expect_agreement_from_cameras(const RenderScene& scene,
 }
 
 // The reference reads the renderer's vertex store, so the store must hold the solver's data:
-// each tet (found by its id) keeps its points (through vertex_source, the store's own order),
+// each tet (found by its id) keeps its points (through point_vertex, the store's own order),
 // and every point its coordinates and value to float precision.
 TEST(ReferenceAgreement, VolumeHoldsTheSolverData) {
   const GyroidTwist scene_data = gyroid(5);
@@ -47,7 +47,7 @@ TEST(ReferenceAgreement, VolumeHoldsTheSolverData) {
     for (int c = 0; c < 4; ++c) {
       const std::int64_t point = scene_data.mesh.tets[4 * id + c];
       const std::int32_t vertex = volume.tets[k].v[c];
-      ASSERT_EQ(volume.vertex_source[vertex], point) << "tet " << id;
+      ASSERT_EQ(volume.point_vertex[point], static_cast<std::uint32_t>(vertex)) << "tet " << id;
       const render::Vertex& v = volume.vertices[vertex];
       const double local[3] = {v.x, v.y, v.z};
       for (int axis = 0; axis < 3; ++axis) {
