@@ -38,8 +38,17 @@ Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int
 }
 
 PixelDirections::PixelDirections(const CameraFrame& frame, const Camera& camera)
-    : column(camera.width), row(camera.height) {
-  for (int i = 0; i < camera.width; ++i) column[i] = column_term(frame, i + 0.5, camera.width);
+    : row(camera.height) {
+  const int columns = camera.width + kPastEdge;
+  column_x.resize(columns);
+  column_y.resize(columns);
+  column_z.resize(columns);
+  for (int i = 0; i < columns; ++i) {
+    const Vec3d c = column_term(frame, std::min(i, camera.width - 1) + 0.5, camera.width);
+    column_x[i] = c.x;
+    column_y[i] = c.y;
+    column_z[i] = c.z;
+  }
   for (int j = 0; j < camera.height; ++j) row[j] = row_term(frame, j + 0.5, camera.height);
 }
 

@@ -25,8 +25,7 @@ struct CameraFrame {
   double scale_y = 0;        // tan(fov/2)
 
   // Unnormalized direction through continuous image coordinates (px, py) in pixels, where the
-  // center of pixel (i, j) is (i + 0.5, j + 0.5). Linear in (px, py): a packet's rays lie in
-  // the convex hull of its corner directions, which frustum culling relies on.
+  // center of pixel (i, j) is (i + 0.5, j + 0.5).
   Vec3d direction_at(double px, double py, int width, int height) const;
 };
 
@@ -36,14 +35,16 @@ CameraFrame make_frame(const Camera& camera);
 Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j);
 
 // The same directions for a whole frame, from a term per column and a term per row, so a
-// packet's set-up costs an add and a normalization per ray. direction(i, j) is bitwise equal to
-// pixel_direction(frame, camera, i, j).
+// packet's set-up costs an add and a normalization per ray. normalize(column + row) is bitwise
+// equal to pixel_direction(frame, camera, i, j). The column terms are stored x, y, z apart (a
+// packet's row is then converted in SIMD) and repeated past the last column for a packet's
+// width, so a packet over the image edge repeats the edge column's rays.
 struct PixelDirections {
-  std::vector<Vec3d> column;  // forward + ndc_x(i) right
-  std::vector<Vec3d> row;     // ndc_y(j) up
+  static constexpr int kPastEdge = 16;               // columns repeated past the last one
+  std::vector<double> column_x, column_y, column_z;  // forward + ndc_x(i) right
+  std::vector<Vec3d> row;                            // ndc_y(j) up
 
   PixelDirections(const CameraFrame& frame, const Camera& camera);
-  Vec3d direction(int i, int j) const { return normalize(column[i] + row[j]); }
 };
 
 // Depth of DESIGN §3: distance along the view axis.

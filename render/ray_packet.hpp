@@ -26,12 +26,10 @@ struct alignas(64) RayPacket {
   alignas(64) std::int32_t iso[kRays];                // isovalue index of that hit
   alignas(64) float nx[kRays], ny[kRays], nz[kRays];  // unnormalized normal at that hit
 
-  Vec3f eye;                       // relative to the volume's origin
-  float inv_lo[3], inv_hi[3];      // interval of the inverse directions, per axis
-  bool inv_straddles[3];           // the directions have both signs on this axis
-  Vec3f corner[4];                 // unnormalized corner directions: all rays in their hull
-  float corner_length_sq_max = 0;  // of the corners
-  float tmax_bound = 0;            // >= tmax of every ray (packet occlusion culling)
+  Vec3f eye;                   // relative to the volume's origin
+  float inv_lo[3], inv_hi[3];  // interval of the inverse directions, per axis
+  bool inv_straddles[3];       // the directions have both signs on this axis
+  float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
   // Image rows of points (relative to the eye) in packet row units:
   // row = row_center - row_scale * dot(p, up) / dot(p, forward).
   Vec3f forward, up;
