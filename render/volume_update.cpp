@@ -46,8 +46,11 @@ Vec3d center_of_points(const PointSource& points) {
 template <typename Visit>
 void for_each_point_vertex(const TetVolume& volume, std::size_t point_count, Visit&& visit) {
   const bool renumbered = !volume.point_vertex.empty();
+  // Never past the caller's arrays, even when a step brings fewer points than the map knows:
+  // the vertices of points cut off keep their values (the adaptor, which checks the tets
+  // against the point count, never lets a used point be cut off).
   const std::size_t count =
-      renumbered ? volume.point_vertex.size() : std::min(point_count, volume.vertices.size());
+      std::min(point_count, renumbered ? volume.point_vertex.size() : volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& block) {
     for (std::size_t p = block.begin(); p != block.end(); ++p) {
       const std::size_t k = renumbered ? volume.point_vertex[p] : p;

@@ -150,6 +150,18 @@ TEST(Refit, NewStepLandsOnEachPointsVertex) {
     EXPECT_NEAR(v.f, field1[p], 1e-6) << "point " << p;
   }
   EXPECT_EQ(mapped, scene.volume.vertices.size());
+  // A step whose arrays end early (here before the last used point) is read only as far as
+  // it goes: the cut-off point's vertex keeps its value, the others take the new one.
+  const std::size_t cut = point_count - 2;  // the last used point
+  ASSERT_NE(map[cut], render::kNoVertex);
+  series.at(0.4);
+  const auto [points2, field2] = placed(series.points, series.field);
+  const std::vector<double> shorter_points(points2.begin(), points2.begin() + 3 * cut);
+  const std::vector<double> shorter_field(field2.begin(), field2.begin() + cut);
+  render::update_volume(scene.volume, scene.bvh, points_of(shorter_points), field_of(shorter_field),
+                        {true, true}, {});
+  EXPECT_NEAR(scene.volume.vertices[map[cut]].f, field1[cut], 1e-6);
+  EXPECT_NEAR(scene.volume.vertices[map[1]].f, field2[1], 1e-6);
 }
 
 TEST(Refit, RefitMatchesRebuildOverGyroidTwistSteps) {
