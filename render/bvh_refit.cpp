@@ -23,12 +23,20 @@ void set_bounds(BvhNode& node, const Bounds4& b, int first_axis) {
   }
 }
 
+// Two bounds grown in turn and merged: two independent min/max chains instead of one, which
+// halves the latency a leaf waits on (about 5% of a refit; four chains were slower again).
 template <bool geometry>
 void fit_leaf(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
-  Bounds4Builder b;
-  for (std::uint32_t k = bvh.leaf_vertex_begin[i]; k < bvh.leaf_vertex_begin[i + 1]; ++k)
-    b.grow(volume.vertices[bvh.leaf_vertices[k]]);
-  set_bounds(node, b.bounds(), geometry ? 0 : 3);
+  Bounds4Builder even, odd;
+  const std::uint32_t end = bvh.leaf_vertex_begin[i + 1];
+  std::uint32_t k = bvh.leaf_vertex_begin[i];
+  for (; k + 1 < end; k += 2) {
+    even.grow(volume.vertices[bvh.leaf_vertices[k]]);
+    odd.grow(volume.vertices[bvh.leaf_vertices[k + 1]]);
+  }
+  if (k < end) even.grow(volume.vertices[bvh.leaf_vertices[k]]);
+  even.grow(odd.bounds());
+  set_bounds(node, even.bounds(), geometry ? 0 : 3);
 }
 
 template <bool geometry>
