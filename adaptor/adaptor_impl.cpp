@@ -209,11 +209,16 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
   const Stopwatch watch;
   FieldVolume& volume = volumes_[v];
   const render::PointSource points = point_source(mesh.points);
+  const CheckedIndices now{epochs_.topology, mesh.points.count};
   const auto check = [&](const std::string& name, std::vector<std::uint8_t>& keep) {
-    const render::MeshCheck found = render::check_mesh(
-        tets_, points, field_source(field_or_empty(fields, name)), config_.nonfinite, keep);
-    return found.error.empty() ? Status::success()
-                               : invalid("mesh with field '" + name + "': " + found.error);
+    const bool indices_known =
+        checked_indices_.topology == now.topology && checked_indices_.points == now.points;
+    const render::MeshCheck found =
+        render::check_mesh(tets_, points, field_source(field_or_empty(fields, name)),
+                           config_.nonfinite, keep, !indices_known);
+    if (!found.error.empty()) return invalid("mesh with field '" + name + "': " + found.error);
+    checked_indices_ = now;
+    return Status::success();
   };
   if (Status st = check(volume.field(), volume.keep()); !st.ok()) return st;
   for (const SceneState& s : scenes_) {

@@ -85,6 +85,12 @@ class Adaptor::Impl {
   std::vector<std::int64_t> tets_converted_;
   std::vector<std::uint32_t> tie_keys_;
   std::uint64_t converted_topology_ = ~std::uint64_t{0};
+  // The topology epoch and point count whose indices were last checked: until either changes,
+  // the index check (most of a check's cost) is not repeated.
+  struct CheckedIndices {
+    std::uint64_t topology = ~std::uint64_t{0};
+    std::size_t points = 0;
+  } checked_indices_;
   std::size_t local_tets_ = 0;
   std::vector<std::uint8_t> color_keep_;
   render::Vec3d origin_{};

@@ -61,7 +61,7 @@ std::string describe(const char* what, const Findings& f) {
 
 MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& points,
                      const FieldSource& field, NonFinitePolicy policy,
-                     std::vector<std::uint8_t>& keep) {
+                     std::vector<std::uint8_t>& keep, bool check_indices) {
   MeshCheck check;
   const std::size_t tet_count = tets.size() / 4;
   keep.assign(tet_count, 1);
@@ -77,7 +77,9 @@ MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& poin
   }
   const auto n = static_cast<std::int64_t>(points.count);
   const Findings out_of_range =
-      find_all(tets.size(), [&](std::size_t i) { return tets[i] < 0 || tets[i] >= n; });
+      check_indices
+          ? find_all(tets.size(), [&](std::size_t i) { return tets[i] < 0 || tets[i] >= n; })
+          : Findings{};
   check.tets_out_of_range = out_of_range.count;
   if (out_of_range.count) {
     const std::size_t i = out_of_range.first;
@@ -102,6 +104,7 @@ MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& poin
   }
   if (!bad_points.count && !bad_values.count) return check;
   auto bad = [&](std::int64_t p) {
+    if (p < 0 || p >= n) return true;
     const auto i = static_cast<std::size_t>(p);
     return !finite_point(points, i) || (field.values && !finite_value(field, i));
   };

@@ -25,8 +25,11 @@ enum class NonFinitePolicy { error, skip_tets };
 // Every index in [0, point_count), finite coordinates (with displacement) and field values.
 // With skip_tets, tets touching a non-finite point or value get keep[t] = 0 and are counted;
 // with error the first finding is reported with its index. `keep` is resized to the tet count.
+// `check_indices` false skips the index pass (the caller checked these tets against this point
+// count before: it is most of the cost, 32 bytes per tet); indices are still never trusted
+// for a memory access (an out-of-range one only marks its tet skipped).
 MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& points,
                      const FieldSource& field, NonFinitePolicy policy,
-                     std::vector<std::uint8_t>& keep);
+                     std::vector<std::uint8_t>& keep, bool check_indices = true);
 
 }  // namespace tetray::render

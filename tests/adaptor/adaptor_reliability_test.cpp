@@ -66,6 +66,28 @@ TEST_F(Reliability, IndexOutOfRange) {
   expect_recovery(2);
 }
 
+// Indices are checked again when the point count changes even if the caller says the topology
+// did not: here the last point is gone and a tet still names it.
+TEST_F(Reliability, IndicesCheckedAgainWhenThePointCountChanges) {
+  const Changes moved{true, false, true};
+  const auto fields = scene_.fields();
+  ASSERT_TRUE(adaptor_->execute(1, 1.0, scene_.view(), fields, moved).ok());
+  PlaneScene fewer = scene_;
+  const std::size_t last = fewer.mesh.point_count() - 1;
+  fewer.mesh.points.resize(3 * last);
+  fewer.f.resize(last);
+  fewer.g.resize(last);
+  const auto fewer_fields = fewer.fields();
+  const Status status = adaptor_->execute(2, 2.0, fewer.view(), fewer_fields, moved);
+  EXPECT_EQ(status.code, StatusCode::invalid_argument);
+  EXPECT_NE(status.message.find("point index " + std::to_string(last) + " outside [0, " +
+                                std::to_string(last) + ")"),
+            std::string::npos)
+      << status.message;
+  EXPECT_FALSE(fs::exists(png(2)));
+  expect_recovery(3);
+}
+
 TEST_F(Reliability, NonFiniteValueUnderErrorPolicy) {
   PlaneScene bad = scene_;
   bad.f[10] = std::numeric_limits<double>::quiet_NaN();

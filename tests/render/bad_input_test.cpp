@@ -167,6 +167,24 @@ TEST(MeshCheck, NonFinitePointsSkipTheirTets) {
   expect_skipped_and_rendered(bad, good, {kInteriorPoint, kOtherInteriorPoint}, "points");
 }
 
+// Without the index pass (indices checked on an earlier step), an index that went out of range
+// is still never used to read a point: under skip_tets its tet is skipped with the tets that
+// touch a non-finite value, and nothing else.
+TEST(MeshCheck, SkippedIndexPassNeverReadsPastThePoints) {
+  MeshArrays mesh = gyroid_arrays(4);
+  mesh.field[kInteriorPoint] = kNaN;
+  const std::size_t tet = 11;
+  mesh.tets[4 * tet + 1] = static_cast<std::int64_t>(mesh.points.size() / 3) + 1000;
+  std::vector<std::uint8_t> keep;
+  const render::MeshCheck found = render::check_mesh(
+      mesh.tets, mesh.point_source(), mesh.field_source(), render::NonFinitePolicy::skip_tets, keep,
+      /*check_indices=*/false);
+  EXPECT_TRUE(found.error.empty()) << found.error;
+  std::vector<std::uint8_t> expected = tets_not_touching(mesh, {kInteriorPoint});
+  expected[tet] = 0;
+  EXPECT_EQ(keep, expected);
+}
+
 TEST(BadInput, EmptyMeshGivesTheBackground) {
   const MeshArrays no_points{};
   const MeshArrays no_tets = [] {
