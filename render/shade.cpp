@@ -25,12 +25,16 @@ float interpolate_color_field(const TetVolume& volume, const Tet& tet, Vec3f x) 
   return static_cast<float>((1 - l1 - l2 - l3) * c[0] + l1 * c[1] + l2 * c[2] + l3 * c[3]);
 }
 
-// The surface's color, or the color field's value at the hit; only the latter reads the tet
-// (a random access into the tets per pixel that a plain surface does not need).
-void base_color(const ShadeContext& ctx, int tet_index, Vec3f hit, int surface, float rgb[3]) {
+// The surface's color, or the color field's value at the hit point eye + t d; only the latter
+// needs the point and reads the tet (a random access into the tets per pixel that a plain
+// surface does not need).
+void base_color(const ShadeContext& ctx, int tet_index, Vec3f d, float t, int surface,
+                float rgb[3]) {
   const ColorBy& by = ctx.options.color_by;
   if (by.colormap && !ctx.volume.color_field.empty()) {
-    const float value = interpolate_color_field(ctx.volume, ctx.volume.tets[tet_index], hit);
+    const Vec3f eye = static_cast<Vec3f>(ctx.frame.eye - ctx.volume.origin);
+    const float value =
+        interpolate_color_field(ctx.volume, ctx.volume.tets[tet_index], eye + t * d);
     const float span = by.range_hi - by.range_lo;
     by.colormap->lookup(span > 0 ? (value - by.range_lo) / span : 0.5f, rgb);
     return;
@@ -50,9 +54,8 @@ void shade_hit(const ShadeContext& ctx, Vec3f d, Vec3f n, float t, int tet_index
   const float cosine = len > 0 ? std::abs(dot(n, d)) / len : 1.0f;
   const float ambient = ctx.options.ambient;
   const float light = ambient + (1 - ambient) * cosine;
-  const Vec3f eye = static_cast<Vec3f>(ctx.frame.eye - ctx.volume.origin);
   float rgb[3];
-  base_color(ctx, tet_index, eye + t * d, surface, rgb);
+  base_color(ctx, tet_index, d, t, surface, rgb);
   for (int k = 0; k < 3; ++k) rgba[k] = rgb[k] * light;
   rgba[3] = 1.0f;
   depth = static_cast<float>(t * dot(static_cast<Vec3d>(d), ctx.frame.forward));
