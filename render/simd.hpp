@@ -72,15 +72,15 @@ inline std::uint64_t bits(Mask m) {
 }
 inline std::uint64_t bits(bool m) { return m ? 1u : 0u; }
 
-// Minimum and maximum of `count` floats, a multiple of kWidth or fewer than kWidth. No NaN may
-// be among them; then the result does not depend on the order of the comparisons.
+// Minimum and maximum of `count` floats (`values` aligned for a batch). No NaN may be among
+// them; then the result does not depend on the order of the comparisons.
 inline void min_max(const float* values, int count, float& lo, float& hi) {
   lo = values[0];
   hi = values[0];
   int i = 0;
   if (count >= kWidth) {
     Floats vlo = Floats::load_aligned(values), vhi = vlo;
-    for (i = kWidth; i < count; i += kWidth) {
+    for (i = kWidth; i + kWidth <= count; i += kWidth) {
       const Floats v = Floats::load_aligned(values + i);
       vlo = xsimd::select(v < vlo, v, vlo);  // compare and blend: GCC 12 reports its own
       vhi = xsimd::select(v > vhi, v, vhi);  // AVX-512 min/max intrinsics as uninitialized
