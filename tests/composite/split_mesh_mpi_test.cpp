@@ -21,6 +21,7 @@
 #include "render/global_reduce.hpp"
 #include "render/trace.hpp"
 #include "render/volume_update.hpp"
+#include "render_fixtures.hpp"
 #include "tetray/box_mesh.hpp"
 
 namespace tetray::render {
@@ -34,17 +35,6 @@ constexpr int kImageSide = 256;
 const GyroidTwist& scene() {
   static const GyroidTwist gyroid = make_gyroid_twist(12, 0.2);
   return gyroid;
-}
-
-Camera global_camera() {
-  Camera camera;
-  camera.eye = {2.5, 1.8, 3.2};
-  camera.look_at = {0, 0, 0};
-  camera.up = {0, 1, 0};
-  camera.fov_deg = 40;
-  camera.width = kImageSide;
-  camera.height = kImageSide;
-  return camera;
 }
 
 // One rank's share of the mesh: its tets renumbered onto its own points, with global tet ids.
@@ -106,7 +96,7 @@ Framebuffer trace_piece(const MeshPiece& piece, Vec3d origin) {
   const FieldSource field{piece.field.data(), ScalarKind::f64, piece.field.size()};
   load_volume(volume, bvh, piece.tets, {}, piece.ids, points, field, {}, &origin);
   const IsoSurface surfaces[] = {IsoSurface{0.0f, {}}};
-  return trace(volume, bvh, global_camera(), surfaces, {});
+  return trace(volume, bvh, test::benchmark_camera(kImageSide), surfaces, {});
 }
 
 struct Comparison {

@@ -30,13 +30,6 @@ render::FieldSource field_of(const std::vector<double>& f) {
   return {f.data(), ScalarKind::f64, f.size()};
 }
 
-Camera benchmark_camera(int side) {
-  Camera camera;
-  camera.eye = {2.5, 1.8, 3.2};
-  camera.width = camera.height = side;
-  return camera;
-}
-
 const IsoSurface kSurfaces[] = {{0.0f, {0.9f, 0.6f, 0.3f}}, {0.5f, {0.3f, 0.6f, 0.9f}}};
 
 // Hit/miss must agree and depth within 1e-6 relative; returns the number of pixels that don't.

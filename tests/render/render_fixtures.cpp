@@ -106,6 +106,10 @@ render::Camera look_at(Vec3d eye, Vec3d target, double fov_deg, int width, int h
   return camera;
 }
 
+render::Camera benchmark_camera(int side) {
+  return look_at({2.5, 1.8, 3.2}, {0, 0, 0}, 40, side, side);
+}
+
 std::vector<render::Camera> standard_cameras(int width, int height, Vec3d center) {
   return {
       look_at(center + Vec3d{2.5, 1.8, 3.2}, center, 40, width, height),

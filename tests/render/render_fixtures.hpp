@@ -65,6 +65,9 @@ std::vector<double> isovalues_of(std::span<const render::IsoSurface> surfaces);
 render::Camera look_at(Vec3d eye, Vec3d target, double fov_deg, int width, int height,
                        Vec3d up = {0, 1, 0});
 
+// The gyroid-twist benchmark camera of DESIGN §6, side x side pixels.
+render::Camera benchmark_camera(int side);
+
 // Cameras that exercise different ray set-ups around a mesh in [-1, 1]^3 shifted by `center`:
 // outside at benchmark distance, axis-aligned, inside the mesh, and far away with a narrow view.
 std::vector<render::Camera> standard_cameras(int width, int height, Vec3d center = {});
