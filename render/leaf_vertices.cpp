@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 namespace tetray::render {
@@ -12,11 +13,12 @@ namespace {
 
 constexpr std::size_t kNodesPerBlock = 2048;
 
-// One block of nodes: each leaf's distinct vertices, concatenated, and per node their count.
+// One block of nodes: each leaf's distinct vertices, concatenated, and per node their count
+// (counts[i] for node i).
 // `seen[v]` holds the last leaf (node index + 1) that listed vertex v, so a vertex shared by
 // several tets of a leaf is listed once without sorting.
 void list_block(const TetVolume& volume, const Bvh& bvh, std::size_t first, std::size_t last,
-                std::vector<std::uint32_t>& seen, std::vector<std::uint32_t>& counts,
+                std::vector<std::uint32_t>& seen, std::uint32_t* counts,
                 std::vector<std::uint32_t>& out) {
   std::size_t corners = 0;
   for (std::size_t i = first; i < last; ++i) corners += 4 * std::size_t{bvh.nodes[i].count};
@@ -44,19 +46,18 @@ void list_block(const TetVolume& volume, const Bvh& bvh, std::size_t first, std:
 void list_leaf_vertices(const TetVolume& volume, Bvh& bvh) {
   const std::size_t nodes = bvh.nodes.size();
   const std::size_t blocks = (nodes + kNodesPerBlock - 1) / kNodesPerBlock;
-  std::vector<std::uint32_t> counts(nodes + 1, 0);
   std::vector<std::vector<std::uint32_t>> lists(blocks);
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> seen_per_thread(
       [&] { return std::vector<std::uint32_t>(volume.vertices.size(), 0); });
+  // Node i's count goes to leaf_vertex_begin[i + 1]; the running sum then makes the offsets.
+  bvh.leaf_vertex_begin.assign(nodes + 1, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     const std::size_t first = b * kNodesPerBlock;
     list_block(volume, bvh, first, std::min(nodes, first + kNodesPerBlock), seen_per_thread.local(),
-               counts, lists[b]);
+               bvh.leaf_vertex_begin.data() + 1, lists[b]);
   });
-  // Offsets: leaf_vertex_begin[i] = vertices listed by nodes before i.
-  bvh.leaf_vertex_begin.assign(nodes + 1, 0);
-  for (std::size_t i = 0; i < nodes; ++i)
-    bvh.leaf_vertex_begin[i + 1] = bvh.leaf_vertex_begin[i] + counts[i];
+  std::partial_sum(bvh.leaf_vertex_begin.begin(), bvh.leaf_vertex_begin.end(),
+                   bvh.leaf_vertex_begin.begin());
   bvh.leaf_vertices.resize(bvh.leaf_vertex_begin[nodes]);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     std::copy(lists[b].begin(), lists[b].end(),
