@@ -1,7 +1,6 @@
 // Axis-aligned boxes used while building and refitting the BVH.
 #pragma once
 
-#include <cstring>
 #include <limits>
 
 #include "render/bvh.hpp"
@@ -36,9 +35,7 @@ struct Bounds4Builder {
   simd::Float4 hi = simd::Float4(-std::numeric_limits<float>::infinity());
 
   void grow(const Vertex& v) {
-    alignas(16) float xyzf[4];
-    std::memcpy(xyzf, &v, sizeof xyzf);  // one aligned load once optimized
-    const auto p = simd::Float4::load_aligned(xyzf);
+    const simd::Float4 p = simd::load_float4(v);
     lo = xsimd::min(lo, p);
     hi = xsimd::max(hi, p);
   }
@@ -56,6 +53,13 @@ struct Bounds4Builder {
     return b;
   }
 };
+
+// 4D bounds of one tet.
+inline Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
+  Bounds4Builder b;
+  b.grow(volume, tet);
+  return b.bounds();
+}
 
 inline float half_area(const Bounds4& b) {
   const float ex = b.hi[0] - b.lo[0], ey = b.hi[1] - b.lo[1], ez = b.hi[2] - b.lo[2];

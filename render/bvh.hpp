@@ -67,7 +67,4 @@ Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options);
 // thread count. Updates sah_cost_now when geometry changes.
 void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry);
 
-// 4D bounds of one tet.
-Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet);
-
 }  // namespace tetray::render

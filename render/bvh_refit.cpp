@@ -88,10 +88,4 @@ void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry) {
   }
 }
 
-Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
-  Bounds4Builder b;
-  b.grow(volume, tet);
-  return b.bounds();
-}
-
 }  // namespace tetray::render

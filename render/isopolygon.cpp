@@ -4,8 +4,8 @@ namespace tetray::render {
 namespace {
 
 // Builds the marching-tetrahedra table: the lone vertex of a 1-3 split gives a triangle of its
-// three edges; a 2-2 split {a0, a1} | {b0, b1} gives the quad a0b0, a0b1, a1b1, a1b0, whose
-// consecutive vertices share a tet face.
+// three edges (the first listed again as the fourth); a 2-2 split {a0, a1} | {b0, b1} gives the
+// quad a0b0, a0b1, a1b1, a1b0, whose consecutive vertices share a tet face.
 constexpr std::array<IsoCase, 16> make_cases() {
   std::array<IsoCase, 16> table{};
   for (int c = 0; c < 16; ++c) {
@@ -23,9 +23,9 @@ constexpr std::array<IsoCase, 16> make_cases() {
       const int lone = na == 1 ? above[0] : below[0];
       const int* others = na == 1 ? below : above;
       entry.vertex_count = 3;
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 4; ++k) {
         entry.edges[k][0] = static_cast<std::uint8_t>(lone);
-        entry.edges[k][1] = static_cast<std::uint8_t>(others[k]);
+        entry.edges[k][1] = static_cast<std::uint8_t>(others[k % 3]);
       }
       continue;
     }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 
+#include "render/simd.hpp"
 #include "render/tet_volume.hpp"
 #include "render/vec.hpp"
 
@@ -14,7 +15,8 @@ namespace tetray::render {
 
 struct IsoCase {
   std::uint8_t vertex_count;  // 0, 3 or 4
-  std::uint8_t edges[4][2];   // tet vertex pairs, in order around the polygon
+  std::uint8_t edges[4][2];   // tet vertex pairs, in order around the polygon; a triangle's
+                              // first edge again as the fourth
 };
 
 // The table for case = sum of (f_i >= iso) << i.
@@ -29,36 +31,50 @@ inline int iso_case(const Vertex* v[4], float iso) {
 // A tet holds a piece of the isosurface iff some vertex is below and some at or above.
 inline bool range_straddles(float fmin, float fmax, float iso) { return fmin < iso && iso <= fmax; }
 
+// Every polygon has four corners: a triangle repeats its first as the fourth (the table lists
+// its first edge twice), so the kernels run one branch-free path over four lanes; the repeated
+// corner adds an edge of no length, which takes no part in the inside test
+// (isopolygon_intersect.hpp).
 struct Isopolygon {
-  int vertex_count = 0;
-  Vec3f p[4];  // relative to the volume's local origin
+  int vertex_count = 0;  // 3 or 4 distinct corners; 0: the tet holds no isosurface
+  simd::Float4 xyz[3];   // x, y, z of the corners (corner k in lane k), relative to the
+                         // volume's local origin
 };
 
-inline bool comes_first(const Vertex& a, const Vertex& b) {
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  if (a.z != b.z) return a.z < b.z;
-  return a.f < b.f;
+// The ends of four tet edges, as components (x, y, z, f; edge k in lane k).
+inline void gather_ends(const Vertex* v[4], const IsoCase& entry, int end,
+                        simd::Float4 (&ends)[4]) {
+  const simd::Float4 rows[4] = {
+      simd::load_float4(*v[entry.edges[0][end]]), simd::load_float4(*v[entry.edges[1][end]]),
+      simd::load_float4(*v[entry.edges[2][end]]), simd::load_float4(*v[entry.edges[3][end]])};
+  simd::transpose4(rows, ends);
 }
 
-// The point where the isosurface crosses the edge (a, b). The two ends are ordered by position
-// (not by index), so every tet sharing the edge, on any rank, computes bitwise the same point:
-// neighbouring isopolygons meet exactly and the surface has no cracks. An end whose value
-// equals the isovalue is returned exactly, so polygons meeting at a mesh vertex through
-// different edges meet there too; and the point is clamped to the edge's bounding box, which
-// rounding could otherwise leave by an ulp (the BVH bounds the vertices, not the polygons).
-inline Vec3f edge_crossing(const Vertex& a, const Vertex& b, float iso) {
-  const bool a_first = comes_first(a, b);
-  const Vertex& p = a_first ? a : b;
-  const Vertex& q = a_first ? b : a;
-  if (p.f == iso) return {p.x, p.y, p.z};
-  if (q.f == iso) return {q.x, q.y, q.z};
-  // p.f != q.f: one end is at or above the isovalue and the other below.
-  const float s = (iso - p.f) / (q.f - p.f);
-  auto along = [s](float from, float to) {
-    return std::clamp(from + s * (to - from), std::min(from, to), std::max(from, to));
-  };
-  return {along(p.x, q.x), along(p.y, q.y), along(p.z, q.z)};
+// The points where the isosurface crosses the four edges (a_k, b_k), one per lane. The two ends
+// of an edge are ordered by position, then value (not by index), so every tet sharing the edge,
+// on any rank, computes bitwise the same point: neighbouring isopolygons meet exactly and the
+// surface has no cracks. An end whose value equals the isovalue is returned exactly, so
+// polygons meeting at a mesh vertex through different edges meet there too; and the point is
+// clamped to the edge's bounding box, which rounding could otherwise leave by an ulp (the BVH
+// bounds the vertices, not the polygons). Selects and compares only: the order of random edge
+// ends is unpredictable, and a branch on it cost more than the arithmetic.
+inline void edge_crossings(const simd::Float4 (&a)[4], const simd::Float4 (&b)[4], float iso,
+                           simd::Float4 (&xyz)[3]) {
+  using simd::Float4;
+  const simd::Mask4 a_first = simd::lexicographic_less<4>(a, b);
+  const Float4 pf = xsimd::select(a_first, a[3], b[3]), qf = xsimd::select(a_first, b[3], a[3]);
+  const Float4 value(iso);
+  // 0 / 0 only where pf == qf; one end equals the isovalue there and is chosen below.
+  const Float4 s = (value - pf) / (qf - pf);
+  for (int c = 0; c < 3; ++c) {
+    const Float4 from = xsimd::select(a_first, a[c], b[c]), to = xsimd::select(a_first, b[c], a[c]);
+    const Float4 along = from + s * (to - from);
+    // std::clamp(along, std::min(from, to), std::max(from, to)), with its exact comparisons.
+    const Float4 lo = xsimd::select(to < from, to, from), hi = xsimd::select(from < to, to, from);
+    const Float4 above = xsimd::select(along < lo, lo, along);
+    const Float4 crossing = xsimd::select(hi < above, hi, above);
+    xyz[c] = xsimd::select(pf == value, from, xsimd::select(qf == value, to, crossing));
+  }
 }
 
 // The isopolygon of a tet for an isovalue; vertex_count 0 when the tet holds none.
@@ -66,8 +82,10 @@ inline Isopolygon extract_isopolygon(const Vertex* v[4], float iso) {
   const IsoCase& entry = iso_cases()[iso_case(v, iso)];
   Isopolygon poly;
   poly.vertex_count = entry.vertex_count;
-  for (int k = 0; k < entry.vertex_count; ++k)
-    poly.p[k] = edge_crossing(*v[entry.edges[k][0]], *v[entry.edges[k][1]], iso);
+  simd::Float4 a[4], b[4];
+  gather_ends(v, entry, 0, a);
+  gather_ends(v, entry, 1, b);
+  edge_crossings(a, b, iso, poly.xyz);
   return poly;
 }
 

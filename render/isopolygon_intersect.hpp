@@ -52,19 +52,25 @@ class IsopolygonIntersector {
   bool intersect(const Isopolygon& poly, const PolygonHit& id, int first_active) {
     if (poly.vertex_count < 3) return false;
     Setup s;
-    s.n = poly.vertex_count;
-    for (int k = 0; k < s.n; ++k) s.rel[k] = poly.p[k] - packet_.eye;
+    const float eye[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
+    simd::Float4 rel[3];
+    for (int c = 0; c < 3; ++c) {
+      rel[c] = poly.xyz[c] - simd::Float4(eye[c]);
+      rel[c].store_aligned(s.rel[c]);
+    }
     int begin = first_active, end = Packet::kRays;
-    if constexpr (S > 1) restrict_to_rows(s, begin, end);
-    const Vec3f* p = poly.p;
-    s.normal = s.n == 3 ? cross(p[1] - p[0], p[2] - p[0]) : cross(p[2] - p[0], p[3] - p[1]);
+    if constexpr (S > 1) restrict_to_rows(rel, begin, end);
+    alignas(16) float corner[3][4];
+    for (int c = 0; c < 3; ++c) poly.xyz[c].store_aligned(corner[c]);
+    auto p = [&](int k) { return Vec3f{corner[0][k], corner[1][k], corner[2][k]}; };
+    // For a triangle (p[3] == p[0]) this is bitwise cross(p[1] - p[0], p[2] - p[0]).
+    s.normal = cross(p(2) - p(0), p(3) - p(1));
     // A polygon of zero area (all its vertices on one tet vertex or edge, where the isovalue
     // equals vertex values) holds no surface; its neighbours hold it. Its edge values would all
     // be zero, and "inside" for every ray.
     if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) begin = end;
     if (begin < end) {
-      for (int k = 0; k < s.n; ++k)
-        s.edge[k] = edge_normal(poly.p[k], poly.p[k + 1 < s.n ? k + 1 : 0]);
+      edge_normals(poly, s);
       return intersect_rays(s, id, begin, end);
     }
     if constexpr (kStats) ++stats_.frustum_culled_isopolygons;
@@ -72,33 +78,42 @@ class IsopolygonIntersector {
   }
 
  private:
+  // Per corner k (and the edge from it to corner k + 1), component c at [c][k].
   struct Setup {
-    int n = 0;
-    Vec3f rel[4];     // vertices relative to the eye
-    Vec3f edge[4];    // edge plane normals
-    Vec3f normal;     // polygon plane normal
-    float plane = 0;  // dot(normal, rel[0])
+    alignas(16) float rel[3][4];   // corners relative to the eye
+    alignas(16) float edge[3][4];  // edge plane normals (zero for a triangle's repeated corner)
+    Vec3f normal;                  // polygon plane normal
+    float plane = 0;               // dot(normal, rel[.][0])
+
+    Vec3f corner(int k) const { return {rel[0][k], rel[1][k], rel[2][k]}; }
+    Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
   };
 
   bool intersect_rays(Setup& s, const PolygonHit& id, int begin, int end) {
-    s.plane = dot(s.normal, s.rel[0]);
+    s.plane = dot(s.normal, s.corner(0));
     bool any_hit = false;
     for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
     return any_hit;
   }
 
-  static bool position_first(Vec3f a, Vec3f b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    return a.z < b.z;
-  }
-
-  // Normal of the plane through the eye and the edge p -> q (see the file comment).
-  Vec3f edge_normal(Vec3f p, Vec3f q) const {
-    const bool forward = position_first(p, q);
-    const Vec3f a = forward ? p : q, b = forward ? q : p;
-    const Vec3f n = cross(a - packet_.eye, b - a);
-    return forward ? n : -n;
+  // Normals of the planes through the eye and each edge k -> k + 1 (see the file comment), the
+  // four edges in the lanes of one register: the ends ordered by position, n = (a - e) x (b - a),
+  // negated where the polygon walks the edge from b to a.
+  void edge_normals(const Isopolygon& poly, Setup& s) const {
+    using simd::Float4;
+    const Float4* p = poly.xyz;
+    const Float4 q[3] = {simd::next_lane(p[0]), simd::next_lane(p[1]), simd::next_lane(p[2])};
+    const simd::Mask4 forward = simd::lexicographic_less<3>(p, q);
+    const float eye[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
+    Float4 u[3], v[3];
+    for (int c = 0; c < 3; ++c) {
+      const Float4 a = xsimd::select(forward, p[c], q[c]), b = xsimd::select(forward, q[c], p[c]);
+      u[c] = a - Float4(eye[c]);
+      v[c] = b - a;
+    }
+    const Float4 n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
+    for (int c = 0; c < 3; ++c) xsimd::select(forward, n[c], -n[c]).store_aligned(s.edge[c]);
   }
 
   // Narrows [begin, end) to the packet rows the polygon's projection covers (a convex
@@ -106,12 +121,16 @@ class IsopolygonIntersector {
   // behind the eye keep every row. The margin, 1/16 row plus 1e-5 of the row value, is far
   // above the rounding of the projection (about 1e-3 row at 1024 rows) and of the rays' own
   // directions, so a ray on the polygon's top or bottom vertex is never cut off.
-  void restrict_to_rows(const Setup& s, int& begin, int& end) const {
+  void restrict_to_rows(const simd::Float4 (&rel)[3], int& begin, int& end) const {
+    using simd::Float4;
+    const Vec3f f = packet_.forward, u = packet_.up;
+    const Float4 depth = rel[0] * f.x + rel[1] * f.y + rel[2] * f.z;
+    if (!xsimd::all(depth > Float4(0.0f))) return;
+    const Float4 height = rel[0] * u.x + rel[1] * u.y + rel[2] * u.z;
+    alignas(16) float rows[4];
+    (Float4(packet_.row_center) - Float4(packet_.row_scale) * height / depth).store_aligned(rows);
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (int k = 0; k < s.n; ++k) {
-      const float depth = dot(s.rel[k], packet_.forward);
-      if (!(depth > 0)) return;
-      const float row = packet_.row_center - packet_.row_scale * dot(s.rel[k], packet_.up) / depth;
+    for (float row : rows) {
       lo = std::min(lo, row);
       hi = std::max(hi, row);
     }
@@ -129,9 +148,9 @@ class IsopolygonIntersector {
     if constexpr (kStats) stats_.ray_isopolygon_tests += W;
     const F dx = simd::load(packet_.dx + base, F{}), dy = simd::load(packet_.dy + base, F{}),
             dz = simd::load(packet_.dz + base, F{});
-    F lo = edge_value(s.edge[0], dx, dy, dz), hi = lo;
-    for (int k = 1; k < s.n; ++k) {
-      const F v = edge_value(s.edge[k], dx, dy, dz);
+    F lo = edge_value(s.edge_normal(0), dx, dy, dz), hi = lo;
+    for (int k = 1; k < 4; ++k) {
+      const F v = edge_value(s.edge_normal(k), dx, dy, dz);
       lo = simd::vmin(lo, v);
       hi = simd::vmax(hi, v);
     }
@@ -139,17 +158,31 @@ class IsopolygonIntersector {
     if (!simd::any(inside)) return false;
     const F t = distance(s, dx, dy, dz);
     const F tmax = simd::load(packet_.tmax + base, F{});
-    const auto closer = simd::both(inside, simd::both(t > F(0.0f), t <= tmax));
-    std::uint64_t lanes = simd::bits(closer);
+    const auto ahead = simd::both(inside, t > F(0.0f));
+    const auto closer = simd::both(ahead, t < tmax);
+    bool updated = break_ties(s, id, base, t, simd::bits(simd::both(ahead, t == tmax)));
+    if (!simd::any(closer)) return updated;
+    simd::store_where(closer, t, packet_.tmax + base);
+    simd::store_where(closer, id.key, packet_.key + base);
+    simd::store_where(closer, id.tet, packet_.tet + base);
+    simd::store_where(closer, id.iso, packet_.iso + base);
+    simd::store_where(closer, F(s.normal.x), packet_.nx + base);
+    simd::store_where(closer, F(s.normal.y), packet_.ny + base);
+    simd::store_where(closer, F(s.normal.z), packet_.nz + base);
+    return true;
+  }
+
+  // Rays whose nearest hit so far lies at exactly this distance (a shared edge or vertex, or a
+  // surface seen twice) keep the hit with the smaller key: rare, so done ray by ray.
+  bool break_ties(const Setup& s, const PolygonHit& id, int base, F t, std::uint64_t lanes) {
     if (!lanes) return false;
     alignas(64) float ts[W];
     simd::store(ts, t);
     bool updated = false;
     for (; lanes; lanes &= lanes - 1) {
       const int r = base + std::countr_zero(lanes);
-      const float tr = ts[r - base];
-      if (tr == packet_.tmax[r] && packet_.key[r] <= id.key) continue;  // tie rule
-      packet_.tmax[r] = tr;
+      if (packet_.key[r] <= id.key) continue;
+      packet_.tmax[r] = ts[r - base];
       packet_.key[r] = id.key;
       packet_.tet[r] = id.tet;
       packet_.iso[r] = id.iso;
@@ -171,9 +204,9 @@ class IsopolygonIntersector {
   F distance(const Setup& s, F dx, F dy, F dz) const {
     const F den = edge_value(s.normal, dx, dy, dz);
     const F t = F(s.plane) / den;
-    F near = edge_value(s.rel[0], dx, dy, dz), far = near;
-    for (int k = 1; k < s.n; ++k) {
-      const F v = edge_value(s.rel[k], dx, dy, dz);
+    F near = edge_value(s.corner(0), dx, dy, dz), far = near;
+    for (int k = 1; k < 4; ++k) {
+      const F v = edge_value(s.corner(k), dx, dy, dz);
       near = simd::vmin(near, v);
       far = simd::vmax(far, v);
     }

@@ -25,40 +25,34 @@ float interpolate_color_field(const TetVolume& volume, const Tet& tet, Vec3f x) 
   return static_cast<float>((1 - l1 - l2 - l3) * c[0] + l1 * c[1] + l2 * c[2] + l3 * c[3]);
 }
 
-// The surface's color, or the color field's value at the hit point eye + t d; only the latter
-// needs the point and reads the tet (a random access into the tets per pixel that a plain
-// surface does not need).
-void base_color(const ShadeContext& ctx, int tet_index, Vec3f d, float t, int surface,
-                float rgb[3]) {
-  const ColorBy& by = ctx.options.color_by;
-  if (by.colormap && !ctx.volume.color_field.empty()) {
-    const Vec3f eye = static_cast<Vec3f>(ctx.frame.eye - ctx.volume.origin);
-    const float value =
-        interpolate_color_field(ctx.volume, ctx.volume.tets[tet_index], eye + t * d);
-    const float span = by.range_hi - by.range_lo;
-    by.colormap->lookup(span > 0 ? (value - by.range_lo) / span : 0.5f, rgb);
-    return;
-  }
-  const Rgb& c = ctx.surfaces[surface].color;
-  rgb[0] = c.r;
-  rgb[1] = c.g;
-  rgb[2] = c.b;
-}
-
 }  // namespace
 
-void shade_hit(const ShadeContext& ctx, Vec3f d, Vec3f n, float t, int tet_index, int iso,
-               float rgba[4], float& depth) {
-  const int surface = ctx.surface_of_sorted[iso];
-  const float len = length(n);
-  const float cosine = len > 0 ? std::abs(dot(n, d)) / len : 1.0f;
+// Written for the compiler to vectorize: no aliasing of the outputs, the division done in every
+// lane and its result selected.
+void light_and_depth(const ShadeContext& ctx, const RayHits& hits, float* light, float* depth) {
   const float ambient = ctx.options.ambient;
-  const float light = ambient + (1 - ambient) * cosine;
-  float rgb[3];
-  base_color(ctx, tet_index, d, t, surface, rgb);
-  for (int k = 0; k < 3; ++k) rgba[k] = rgb[k] * light;
-  rgba[3] = 1.0f;
-  depth = static_cast<float>(t * dot(static_cast<Vec3d>(d), ctx.frame.forward));
+  const Vec3d forward = ctx.frame.forward;
+  float* __restrict light_out = light;
+  float* __restrict depth_out = depth;
+  for (int r = 0; r < hits.count; ++r) {
+    const float nx = hits.nx[r], ny = hits.ny[r], nz = hits.nz[r];
+    const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    const float ratio = std::abs(nx * hits.dx[r] + ny * hits.dy[r] + nz * hits.dz[r]) / len;
+    light_out[r] = ambient + (1 - ambient) * (len > 0 ? ratio : 1.0f);
+  }
+  for (int r = 0; r < hits.count; ++r) {
+    const double along = double(hits.dx[r]) * forward.x + double(hits.dy[r]) * forward.y +
+                         double(hits.dz[r]) * forward.z;
+    depth_out[r] = static_cast<float>(hits.t[r] * along);
+  }
+}
+
+void field_color(const ShadeContext& ctx, int tet, Vec3f d, float t, float rgb[3]) {
+  const ColorBy& by = ctx.options.color_by;
+  const Vec3f eye = static_cast<Vec3f>(ctx.frame.eye - ctx.volume.origin);
+  const float value = interpolate_color_field(ctx.volume, ctx.volume.tets[tet], eye + t * d);
+  const float span = by.range_hi - by.range_lo;
+  by.colormap->lookup(span > 0 ? (value - by.range_lo) / span : 0.5f, rgb);
 }
 
 }  // namespace tetray::render

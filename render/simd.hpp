@@ -8,6 +8,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 
 namespace tetray::render::simd {
 
@@ -19,6 +21,46 @@ inline constexpr int kWidth = static_cast<int>(Floats::size);
 // Four floats in one register: a Vertex (x, y, z, f) or one side of a 4D bound, so a bound
 // grows by one min and one max per vertex (seed 000 §6.2).
 using Float4 = xsimd::make_sized_batch_t<float, 4>;
+
+using Mask4 = Float4::batch_bool_type;
+
+// The four floats of a 16-byte aligned struct (a Vertex) as one aligned load.
+template <typename T>
+inline Float4 load_float4(const T& v) {
+  static_assert(sizeof(T) == 4 * sizeof(float) && alignof(T) >= 16);
+  alignas(16) float xyzw[4];
+  std::memcpy(xyzw, &v, sizeof xyzw);  // one aligned load once optimized
+  return Float4::load_aligned(xyzw);
+}
+
+// Four 16-byte structs (rows) turned into their four components (columns): lane k of column c
+// is component c of row k.
+inline void transpose4(const Float4 (&rows)[4], Float4 (&columns)[4]) {
+  using Pairs = xsimd::make_sized_batch_t<double, 2>;  // two floats moved as one double
+  const Pairs xy01 = xsimd::bitwise_cast<Pairs>(xsimd::zip_lo(rows[0], rows[1]));
+  const Pairs xy23 = xsimd::bitwise_cast<Pairs>(xsimd::zip_lo(rows[2], rows[3]));
+  const Pairs zw01 = xsimd::bitwise_cast<Pairs>(xsimd::zip_hi(rows[0], rows[1]));
+  const Pairs zw23 = xsimd::bitwise_cast<Pairs>(xsimd::zip_hi(rows[2], rows[3]));
+  columns[0] = xsimd::bitwise_cast<Float4>(xsimd::zip_lo(xy01, xy23));
+  columns[1] = xsimd::bitwise_cast<Float4>(xsimd::zip_hi(xy01, xy23));
+  columns[2] = xsimd::bitwise_cast<Float4>(xsimd::zip_lo(zw01, zw23));
+  columns[3] = xsimd::bitwise_cast<Float4>(xsimd::zip_hi(zw01, zw23));
+}
+
+// Lanes (1, 2, 3, 0) of v: lane k gets lane k + 1, cyclically.
+inline Float4 next_lane(Float4 v) {
+  return xsimd::swizzle(
+      v, xsimd::batch_constant<xsimd::batch<std::uint32_t, Float4::arch_type>, 1, 2, 3, 0>());
+}
+
+// Lanewise lexicographic a < b over N components: the first component that differs decides.
+// Compares only, so the result is exact and needs no branch.
+template <int N>
+inline Mask4 lexicographic_less(const Float4* a, const Float4* b) {
+  Mask4 less = a[N - 1] < b[N - 1];
+  for (int c = N - 2; c >= 0; --c) less = (a[c] < b[c]) | ((a[c] == b[c]) & less);
+  return less;
+}
 
 // Lane type for a packet of `rays` rays: a full batch when it fills one, else plain float.
 template <int rays>
@@ -47,6 +89,24 @@ inline Floats select(Mask m, Floats a, Floats b) { return xsimd::select(m, a, b)
 inline float select(bool m, float a, float b) { return m ? a : b; }
 inline bool any(Mask m) { return xsimd::any(m); }
 inline bool any(bool m) { return m; }
+
+// The lanes of p[0, width) where `m` is set become `value`: a read, blend and write, which the
+// per-thread packet arrays allow (no masked store needed). Integers go through the float mask.
+inline void store_where(Mask m, Floats value, float* p) {
+  xsimd::select(m, value, Floats::load_aligned(p)).store_aligned(p);
+}
+template <typename T>
+inline void store_where(Mask m, T value, T* p) {
+  static_assert(sizeof(T) == sizeof(float) && std::is_integral_v<T>);
+  using Lanes = xsimd::batch<T>;
+  const Floats old = xsimd::bitwise_cast<Floats>(Lanes::load_aligned(p));
+  const Floats fresh = xsimd::bitwise_cast<Floats>(Lanes(value));
+  xsimd::bitwise_cast<Lanes>(xsimd::select(m, fresh, old)).store_aligned(p);
+}
+template <typename T>
+inline void store_where(bool m, T value, T* p) {
+  if (m) *p = value;
+}
 
 inline Mask either(Mask a, Mask b) { return a | b; }
 inline bool either(bool a, bool b) { return a || b; }

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "reference_comparison.hpp"
+#include "render/bounds.hpp"
 #include "render/step_store.hpp"
 #include "render/volume_update.hpp"
 
