@@ -50,7 +50,7 @@ Imf::Header exr_header(int width, int height) {
   return header;
 }
 
-std::vector<Imath::half> to_half(const std::vector<float>& values) {
+std::vector<Imath::half> to_half(std::span<const float> values) {
   std::vector<Imath::half> halves(values.size());
   for (std::size_t k = 0; k < values.size(); ++k) halves[k] = Imath::half(values[k]);
   return halves;

@@ -2,20 +2,40 @@
 // depth compositing deterministic (ties in depth go to the smaller id).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <new>
 #include <vector>
 
 namespace tetray::render {
+
+// Allocates on cache-line boundaries, so that whole pixel rows of a packet can be written with
+// streaming stores (trace.cpp), which need aligned addresses.
+template <typename T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+
+  CacheLineAllocator() = default;
+  template <typename U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
+  bool operator==(const CacheLineAllocator&) const { return true; }
+};
+
+template <typename T>
+using PixelArray = std::vector<T, CacheLineAllocator<T>>;
 
 inline constexpr std::uint32_t kNoHit = std::numeric_limits<std::uint32_t>::max();
 
 struct Framebuffer {
   int width = 0;
   int height = 0;
-  std::vector<float> rgba;         // 4 per pixel, linear, premultiplied; background 0,0,0,0
-  std::vector<float> depth;        // view-axis depth; background +infinity
-  std::vector<std::uint32_t> hit;  // tie-break key of the surface hit (kNoHit: background)
+  PixelArray<float> rgba;         // 4 per pixel, linear, premultiplied; background 0,0,0,0
+  PixelArray<float> depth;        // view-axis depth; background +infinity
+  PixelArray<std::uint32_t> hit;  // tie-break key of the surface hit (kNoHit: background)
 
   Framebuffer() = default;
   Framebuffer(int w, int h)

@@ -132,6 +132,39 @@ inline std::uint64_t bits(Mask m) {
 }
 inline std::uint64_t bits(bool m) { return m ? 1u : 0u; }
 
+// Bytes one streaming store writes; destinations of stream_copy are aligned to it.
+inline constexpr std::size_t kStreamBytes = sizeof(float) * kWidth;
+
+// Copies `bytes` (a multiple of kStreamBytes) from `from` to `to`, both aligned to
+// kStreamBytes, with streaming stores: the destination's cache lines are written without being
+// read first (a frame is written once and read only after it is done). Call stream_fence()
+// before another thread reads them.
+inline void stream_copy(void* to, const void* from, std::size_t bytes) {
+#if XSIMD_WITH_AVX512F
+  for (std::size_t k = 0; k < bytes / kStreamBytes; ++k)
+    _mm512_stream_si512(static_cast<__m512i*>(to) + k,
+                        _mm512_load_si512(static_cast<const __m512i*>(from) + k));
+#elif XSIMD_WITH_AVX
+  for (std::size_t k = 0; k < bytes / kStreamBytes; ++k)
+    _mm256_stream_si256(static_cast<__m256i*>(to) + k,
+                        _mm256_load_si256(static_cast<const __m256i*>(from) + k));
+#elif XSIMD_WITH_SSE2
+  for (std::size_t k = 0; k < bytes / kStreamBytes; ++k)
+    _mm_stream_si128(static_cast<__m128i*>(to) + k,
+                     _mm_load_si128(static_cast<const __m128i*>(from) + k));
+#else
+  std::memcpy(to, from, bytes);
+#endif
+}
+
+// Orders the streaming stores before the stores that follow (and so before the work is handed
+// to another thread).
+inline void stream_fence() {
+#if XSIMD_WITH_SSE2
+  _mm_sfence();
+#endif
+}
+
 // Minimum and maximum of `count` floats (`values` aligned for a batch). No NaN may be among
 // them; then the result does not depend on the order of the comparisons.
 inline void min_max(const float* values, int count, float& lo, float& hi) {

@@ -36,14 +36,14 @@ render::UpdateResult load_scene(const GyroidTwist& scene, render::TetVolume& vol
                              field_source(scene.field), policy);
 }
 
-render::Framebuffer trace_scene(const render::TetVolume& volume, const render::Bvh& bvh,
-                                const render::Camera& camera, render::PacketSize packet,
-                                render::TraceStats* stats) {
+void trace_scene(const render::TetVolume& volume, const render::Bvh& bvh,
+                 const render::Camera& camera, render::PacketSize packet,
+                 render::Framebuffer& image, render::TraceStats* stats) {
   const render::IsoSurface surface = bench_surface();
   render::TraceOptions options;
   options.packet = packet;
   options.collect_stats = stats != nullptr;
-  return render::trace(volume, bvh, camera, {&surface, 1}, options, stats);
+  render::trace_into(image, volume, bvh, camera, {&surface, 1}, options, stats);
 }
 
 std::vector<double> strong_twist(const BoxMesh& reference) {

@@ -26,10 +26,11 @@ render::FieldSource field_source(const std::vector<double>& field);
 render::UpdateResult load_scene(const GyroidTwist& scene, render::TetVolume& volume,
                                 render::Bvh& bvh, const render::UpdatePolicy& policy = {});
 
-// One frame of the scene's isosurface; statistics are collected only when `stats` is given.
-render::Framebuffer trace_scene(const render::TetVolume& volume, const render::Bvh& bvh,
-                                const render::Camera& camera, render::PacketSize packet,
-                                render::TraceStats* stats = nullptr);
+// One frame of the scene's isosurface into `image`, whose storage is reused from frame to
+// frame as in situ; statistics are collected only when `stats` is given.
+void trace_scene(const render::TetVolume& volume, const render::Bvh& bvh,
+                 const render::Camera& camera, render::PacketSize packet,
+                 render::Framebuffer& image, render::TraceStats* stats = nullptr);
 
 // A deformation far beyond the benchmark's steps: a full turn of twist about z from the bottom
 // of the cube to the top, which stretches every tet's bounds and should make the policy rebuild.
