@@ -40,7 +40,7 @@ Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int
 // packet's row is then converted in SIMD) and repeated past the last column for a packet's
 // width, so a packet over the image edge repeats the edge column's rays.
 struct PixelDirections {
-  static constexpr int kPastEdge = 16;               // columns repeated past the last one
+  static constexpr int kPastEdge = 32;               // columns repeated past the last one
   std::vector<double> column_x, column_y, column_z;  // forward + ndc_x(i) right
   std::vector<Vec3d> row;                            // ndc_y(j) up
 

@@ -18,7 +18,7 @@
 namespace tetray::render {
 namespace {
 
-constexpr int kBlock = 16;
+constexpr int kBlock = 32;  // pixels a side of a parallel task, a multiple of every packet size
 
 struct Frame {
   const TetVolume& volume;
@@ -152,6 +152,20 @@ void trace_with(const Frame& f, Framebuffer& image, bool collect, TraceStats* st
 
 }  // namespace
 
+const char* to_string(PacketSize packet) {
+  switch (packet) {
+    case PacketSize::single:
+      return "1";
+    case PacketSize::p8x8:
+      return "8x8";
+    case PacketSize::p16x16:
+      return "16x16";
+    case PacketSize::p32x32:
+      return "32x32";
+  }
+  return "?";
+}
+
 TraceStats& TraceStats::operator+=(const TraceStats& o) {
   rays += o.rays;
   hits += o.hits;
@@ -203,6 +217,9 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
       break;
     case PacketSize::p16x16:
       trace_with<16>(f, image, collect, stats);
+      break;
+    case PacketSize::p32x32:
+      trace_with<32>(f, image, collect, stats);
       break;
   }
 }

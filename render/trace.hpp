@@ -3,6 +3,7 @@
 // frustum culling; leaves intersect on-the-fly isopolygons.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -25,7 +26,14 @@ struct IsoSurface {
   Rgb color{};
 };
 
-enum class PacketSize { single, p8x8, p16x16 };
+// Rays traced together (seed 000 §3): single rays, or square packets. Every size gives bitwise
+// the same image; larger packets share more of the traversal and of each isopolygon's set-up.
+enum class PacketSize { single, p8x8, p16x16, p32x32 };
+inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
+                                            PacketSize::p16x16, PacketSize::p32x32};
+
+// "1", "8x8", "16x16", "32x32".
+const char* to_string(PacketSize packet);
 
 // Seed 000 Table 4 counters, per frame.
 struct TraceStats {
@@ -49,7 +57,7 @@ struct ColorBy {
 };
 
 struct TraceOptions {
-  PacketSize packet = PacketSize::p16x16;
+  PacketSize packet = PacketSize::p32x32;
   bool collect_stats = false;  // off: the hot path pays nothing for counting
   ColorBy color_by{};
   float ambient = 0.15f;  // Lambert headlight: color * (ambient + (1 - ambient) |cos|)

@@ -49,6 +49,7 @@ Json::Value refit(const RefitFigures& refit) {
   json["bound_geometry_ms"] = number(refit.bound_geometry_ms);
   json["rebuild_ms"] = number(refit.rebuild_ms);
   json["step_total_ms"] = number(refit.step_total_ms);
+  json["step_total_default_packet_ms"] = number(refit.step_total_default_ms);
   json["ref_step_total_ms"] = number(refit.ref_step_total_ms);
   json["quality_ratio_after_steps"] = number(refit.quality_ratio_after_steps);
   json["strong_deformation"]["kind"] = refit.strong_deformation_kind;
@@ -66,7 +67,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["bvh_bytes_per_tet"] = number(figures.tetray.bvh_bytes_per_tet);
   json["bvh_nodes"] = count(figures.tetray.bvh_nodes);
   for (const PacketFigures& packet : figures.tetray.packets) {
-    const char* label = packet_label(packet.packet);
+    const char* label = render::to_string(packet.packet);
     json["trace_ms"][label] = number(packet.trace_ms);
     json["mrays_per_s"][label] = number(packet.mrays_per_s);
     json["counts"][label] = counts(packet.counts);

@@ -5,18 +5,6 @@
 
 namespace tetray::bench {
 
-const char* packet_label(render::PacketSize packet) {
-  switch (packet) {
-    case render::PacketSize::single:
-      return "1";
-    case render::PacketSize::p8x8:
-      return "8x8";
-    case render::PacketSize::p16x16:
-      return "16x16";
-  }
-  return "?";
-}
-
 const PacketFigures& SceneFigures::packet(render::PacketSize size) const {
   const auto it = std::find_if(tetray.packets.begin(), tetray.packets.end(),
                                [size](const PacketFigures& p) { return p.packet == size; });

@@ -11,11 +11,7 @@
 
 namespace tetray::bench {
 
-inline constexpr std::array kPacketSizes = {render::PacketSize::single, render::PacketSize::p8x8,
-                                            render::PacketSize::p16x16};
-
-// "1", "8x8", "16x16": the keys of the JSON objects per packet size.
-const char* packet_label(render::PacketSize packet);
+// The JSON objects per packet size are keyed by render::to_string(packet).
 
 struct PacketFigures {
   render::PacketSize packet = render::PacketSize::p16x16;
@@ -29,7 +25,7 @@ struct TetrayFigures {
   double build_sah_ms = 0;
   double bvh_bytes_per_tet = 0;  // BVH nodes + tet id array, per tet
   std::size_t bvh_nodes = 0;
-  std::vector<PacketFigures> packets;  // in kPacketSizes order
+  std::vector<PacketFigures> packets;  // in render::kPacketSizes order
 };
 
 struct ReferenceFigures {
@@ -54,7 +50,9 @@ struct RefitFigures {
   double bound_field_only_ms = 0;
   double bound_geometry_ms = 0;
   double rebuild_ms = 0;
-  double step_total_ms = 0;  // update (geometry + field) + trace at 16x16, median over steps
+  // update (geometry + field) + trace, each step the best of a few runs, median over steps:
+  double step_total_ms = 0;          // traced in 16x16 packets, as issue 4 defines the step
+  double step_total_default_ms = 0;  // in the default packets (render::TraceOptions)
   double ref_step_total_ms = 0;
   double quality_ratio_after_steps = 0;
   std::string strong_deformation_kind;  // the policy's decision after a strong twist

@@ -23,7 +23,7 @@ void print_tetray(const SceneFigures& s) {
   for (const PacketFigures& p : s.tetray.packets) {
     const render::TraceStats& c = p.counts;
     std::printf("         %-6s %9.1f %8.1f |                %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
-                packet_label(p.packet), p.trace_ms, p.mrays_per_s, mega(c.packet_box_tests),
+                render::to_string(p.packet), p.trace_ms, p.mrays_per_s, mega(c.packet_box_tests),
                 mega(c.ray_box_tests), mega(c.isorange_tests), mega(c.isopolygon_extractions),
                 mega(c.ray_isopolygon_tests), mega(c.frustum_culled_isopolygons));
   }
@@ -46,9 +46,10 @@ void print_refit(const RefitFigures& r) {
       r.field_only_ms, r.bound_field_only_ms, mega(r.bytes_field_only), r.geometry_ms,
       r.bound_geometry_ms, mega(r.bytes_geometry), r.rebuild_ms);
   std::printf(
-      "  in-situ step   %.1f ms (update + trace 16x16) vs reference %.1f ms"
-      " (contour + Embree build + trace)\n",
-      r.step_total_ms, r.ref_step_total_ms);
+      "  in-situ step   %.1f ms (update + trace 16x16), %.1f ms (update + trace %s, the default)"
+      " vs reference %.1f ms (contour + Embree build + trace)\n",
+      r.step_total_ms, r.step_total_default_ms, render::to_string(render::TraceOptions{}.packet),
+      r.ref_step_total_ms);
   std::printf(
       "  policy         quality ratio after the steps %.3f; strong twist: %s (ratio %.2f)\n",
       r.quality_ratio_after_steps, r.strong_deformation_kind.c_str(), r.strong_deformation_ratio);

@@ -48,7 +48,7 @@ TetrayRun measure_tetray(const GyroidTwist& scene, const render::Camera& camera)
   figures.build_sah_ms = build_ms(volume, render::BvhBuilder::sah);
   figures.bvh_bytes_per_tet = bytes_per_tet(volume, bvh);
   figures.bvh_nodes = bvh.nodes.size();
-  for (const render::PacketSize packet : kPacketSizes)
+  for (const render::PacketSize packet : render::kPacketSizes)
     figures.packets.push_back(measure_packet(volume, bvh, camera, packet));
   trace_scene(volume, bvh, camera, render::PacketSize::p16x16, run.image);
   return run;

@@ -73,15 +73,24 @@ CLI::Validator image_extension() {
       "OUT.exr|OUT.png");
 }
 
+std::vector<std::string> packet_names() {
+  std::vector<std::string> names;
+  for (const render::PacketSize packet : render::kPacketSizes)
+    names.emplace_back(to_string(packet));
+  return names;
+}
+
+// One of packet_names(), checked by the parser.
 render::PacketSize packet_size(const std::string& name) {
-  if (name == "1") return render::PacketSize::single;
-  if (name == "8x8") return render::PacketSize::p8x8;
-  return render::PacketSize::p16x16;
+  for (const render::PacketSize packet : render::kPacketSizes)
+    if (name == to_string(packet)) return packet;
+  return render::TraceOptions{}.packet;
 }
 
 // Options given as text and converted once the whole command line has been checked.
 struct OptionTexts {
-  std::string eye, look_at, up, size = "1024x1024", packet = "16x16";
+  std::string eye, look_at, up, size = "1024x1024",
+                                packet = render::to_string(render::TraceOptions{}.packet);
 };
 
 void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) {
@@ -102,8 +111,8 @@ void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) 
   app.add_option("--size", texts.size, "image size")->check(size_format())->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (default: every core)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--packet", texts.packet, "ray packet: 1, 8x8 or 16x16")
-      ->check(CLI::IsMember({"1", "8x8", "16x16"}))
+  app.add_option("--packet", texts.packet, "ray packet: 1, 8x8, 16x16 or 32x32")
+      ->check(CLI::IsMember(packet_names()))
       ->capture_default_str();
   app.add_option("-o,--output", options.output, "output image (.exr or .png)")
       ->required()

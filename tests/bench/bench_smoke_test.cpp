@@ -44,7 +44,7 @@ TEST(BenchSmoke, JsonHasEveryKey) {
   EXPECT_EQ(scene["n"].asInt(), 6);
   EXPECT_EQ(scene["tets"].asUInt64(), 6u * 6 * 6 * 6);
   expect_numbers(scene, {"build_bih_ms", "build_sah_ms", "bvh_bytes_per_tet"});
-  for (const char* packet : {"1", "8x8", "16x16"}) {
+  for (const char* packet : {"1", "8x8", "16x16", "32x32"}) {
     expect_numbers(scene["trace_ms"], {packet});
     expect_numbers(scene["mrays_per_s"], {packet});
     expect_numbers(scene["counts"][packet],
@@ -55,7 +55,8 @@ TEST(BenchSmoke, JsonHasEveryKey) {
                                 "depth_agree_fraction", "depth_median_rel_diff"});
   expect_numbers(scene["refit"],
                  {"field_only_ms", "geometry_ms", "bound_field_only_ms", "bound_geometry_ms",
-                  "rebuild_ms", "step_total_ms", "ref_step_total_ms", "quality_ratio_after_steps"});
+                  "rebuild_ms", "step_total_ms", "step_total_default_packet_ms",
+                  "ref_step_total_ms", "quality_ratio_after_steps"});
   EXPECT_GT(scene["ref"]["triangles"].asUInt64(), 0u);
   EXPECT_GT(scene["ref"]["depth_agree_fraction"].asDouble(), 0.9);
 }

@@ -10,8 +10,7 @@
 namespace tetray::test {
 namespace {
 
-constexpr render::PacketSize kPackets[] = {render::PacketSize::p16x16, render::PacketSize::p8x8,
-                                           render::PacketSize::single};
+constexpr auto kPackets = render::kPacketSizes;
 
 struct TracedWithStats {
   render::Framebuffer image;

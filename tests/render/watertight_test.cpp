@@ -23,14 +23,12 @@ namespace {
 // length): far above float rounding, far below a tet.
 constexpr double kRegionMargin = 1e-5;
 
-constexpr render::PacketSize kPackets[] = {render::PacketSize::p16x16, render::PacketSize::p8x8,
-                                           render::PacketSize::single};
-constexpr const char* kPacketNames[] = {"16x16", "8x8", "single"};
+constexpr auto kPackets = render::kPacketSizes;
 
 struct MissCounts {
-  std::size_t rays = 0;                  // rays through the enclosed region
-  std::size_t crossing_from_inside = 0;  // of those, from an eye inside it
-  std::array<std::size_t, 3> misses{};   // per packet size
+  std::size_t rays = 0;                               // rays through the enclosed region
+  std::size_t crossing_from_inside = 0;               // of those, from an eye inside it
+  std::array<std::size_t, kPackets.size()> misses{};  // per packet size
 };
 
 std::vector<std::uint8_t> rays_through_region(const BelowLevelProbe& probe,
@@ -70,19 +68,20 @@ void count_misses(const RenderScene& scene, const BelowLevelProbe& probe,
       const render::CameraFrame frame = render::make_frame(camera);
       const ReferenceHit ref =
           reference.trace_ray(frame, render::pixel_direction(frame, camera, i, j));
-      ADD_FAILURE() << label << " packet " << kPacketNames[k] << ": pinhole at pixel (" << i << ", "
-                    << j << "); reference depth " << ref.depth << " tet " << ref.tet_id
-                    << ", isopolygon edge distance " << ref.isopolygon_edge_distance
-                    << ", tet edge distance " << ref.tet_edge_distance;
+      ADD_FAILURE() << label << " packet " << render::to_string(kPackets[k])
+                    << ": pinhole at pixel (" << i << ", " << j << "); reference depth "
+                    << ref.depth << " tet " << ref.tet_id << ", isopolygon edge distance "
+                    << ref.isopolygon_edge_distance << ", tet edge distance "
+                    << ref.tet_edge_distance;
     }
   }
 }
 
 void print_counts(const std::string& label, const MissCounts& counts) {
   std::cout << "[ watertight ] " << label << ": rays through the enclosed region " << counts.rays
-            << " (" << counts.crossing_from_inside << " from eyes inside it); misses";
+            << " (" << counts.crossing_from_inside << " from eyes inside it); misses per packet";
   for (std::size_t k = 0; k < std::size(kPackets); ++k) {
-    std::cout << " " << kPacketNames[k] << " " << counts.misses[k];
+    std::cout << (k ? ", " : " ") << render::to_string(kPackets[k]) << ": " << counts.misses[k];
   }
   std::cout << "\n";
 }
