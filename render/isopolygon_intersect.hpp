@@ -162,6 +162,8 @@ class IsopolygonIntersector {
     const auto closer = simd::both(ahead, t < tmax);
     bool updated = break_ties(s, id, base, t, simd::bits(simd::both(ahead, t == tmax)));
     if (!simd::any(closer)) return updated;
+    const auto first_hit = simd::both(closer, tmax == F(std::numeric_limits<float>::infinity()));
+    packet_.rays_without_hit -= std::popcount(simd::bits(first_hit));
     simd::store_where(closer, t, packet_.tmax + base);
     simd::store_where(closer, id.key, packet_.key + base);
     simd::store_where(closer, id.tet, packet_.tet + base);

@@ -64,6 +64,7 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
     packet.inv_straddles[a] = packet.inv_lo[a] < 0 && packet.inv_hi[a] > 0;
   }
   packet.tmax_bound = kInf;
+  packet.rays_without_hit = (x1 - x0 + 1) * (y1 - y0 + 1);
   packet.forward = static_cast<Vec3f>(frame.forward);
   packet.up = static_cast<Vec3f>(frame.up);
   // Row j's center has ndc_y = (1 - 2 (j + 0.5) / H) scale_y.
@@ -73,6 +74,7 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
 
 template <int S>
 void update_tmax_bound(RayPacket<S>& packet) {
+  if (packet.rays_without_hit > 0) return;
   float lowest;
   simd::min_max(packet.tmax, RayPacket<S>::kRays, lowest, packet.tmax_bound);
 }

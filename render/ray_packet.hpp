@@ -30,6 +30,8 @@ struct alignas(64) RayPacket {
   float inv_lo[3], inv_hi[3];  // interval of the inverse directions, per axis
   bool inv_straddles[3];       // the directions have both signs on this axis
   float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
+  int rays_without_hit = 0;    // rays in the image still without a hit: while any is left,
+                               // tmax_bound stays infinite and needs no update
   // Image rows of points (relative to the eye) in packet row units:
   // row = row_center - row_scale * dot(p, up) / dot(p, forward).
   Vec3f forward, up;
@@ -41,7 +43,7 @@ template <int S>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
                   const PixelDirections& directions, Vec3d origin, int x0, int y0);
 
-// The largest tmax of the packet's rays.
+// The largest tmax of the packet's rays (computed once every ray in the image has a hit).
 template <int S>
 void update_tmax_bound(RayPacket<S>& packet);
 
