@@ -115,11 +115,24 @@ class PacketTraversal {
         continue;
       }
       const bool left_first = near_child_is_first(first);
-      push(left_first ? first + 1 : first, active);
+      const std::uint32_t far = left_first ? first + 1 : first;
       node = left_first ? first : first + 1;
+      prefetch_children(far);
+      prefetch_children(node);
+      push(far, active);
       active = geometric_test(bvh_.nodes[node], active);
       if (active < 0) return;
     }
+  }
+
+  // Asks for the cache lines of an inner node's children (a leaf's tets) ahead of use: node
+  // visits wait on memory, and the geometric test of the near child, or the whole near
+  // subtree for the far one, runs meanwhile.
+  void prefetch_children(std::uint32_t node) const {
+    const BvhNode& n = bvh_.nodes[node];
+    if (n.is_leaf()) return;
+    __builtin_prefetch(&bvh_.nodes[n.first]);
+    __builtin_prefetch(&bvh_.nodes[n.first + 1].count);
   }
 
   // Front-to-back order along the packet's mean direction.
