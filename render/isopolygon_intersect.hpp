@@ -4,7 +4,7 @@
 //
 // Watertightness: the edge plane's normal is computed from the edge's two points in a fixed
 // order (by position) as (A - e) x (B - A), then negated if the polygon walks the edge from B to
-// A. A neighbouring tet computes the same two points bitwise (edge_crossing orders them by
+// A. A neighbouring tet computes the same two points bitwise (edge_crossings orders them by
 // position too), hence the same canonical normal, and negation is exact; so is the sign of its
 // dot with the ray (no fused multiply-add: render/ is built with -ffp-contract=off). A ray
 // therefore falls on one side of a shared edge or exactly on it, never into a gap. The test

@@ -58,6 +58,8 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
   std::fill_n(packet.key, n, kNoHit);
   std::fill_n(packet.tet, n, -1);
   std::fill_n(packet.iso, n, -1);
+  // Shading reads every ray's normal at once, a ray without a hit included.
+  for (float* normal : {packet.nx, packet.ny, packet.nz}) std::fill_n(normal, n, 0.0f);
   const float* inv[3] = {packet.ix, packet.iy, packet.iz};
   for (int a = 0; a < 3; ++a) {
     simd::min_max(inv[a], n, packet.inv_lo[a], packet.inv_hi[a]);

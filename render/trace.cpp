@@ -1,4 +1,4 @@
-// Frame driver: splits the image into 16 x 16 blocks traced in parallel, each as packets of
+// Frame driver: splits the image into 32 x 32 blocks traced in parallel, each as packets of
 // the chosen size; the leaf operation intersects on-the-fly isopolygons (seed 000 §4.4: no
 // cache) of every tet whose own range straddles an isovalue (§5.2 V).
 #include "render/trace.hpp"
