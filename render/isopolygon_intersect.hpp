@@ -159,41 +159,22 @@ class IsopolygonIntersector {
     const F t = distance(s, dx, dy, dz);
     const F tmax = simd::load(packet_.tmax + base, F{});
     const auto ahead = simd::both(inside, t > F(0.0f));
-    const auto closer = simd::both(ahead, t < tmax);
-    bool updated = break_ties(s, id, base, t, simd::bits(simd::both(ahead, t == tmax)));
-    if (!simd::any(closer)) return updated;
-    const auto first_hit = simd::both(closer, tmax == F(std::numeric_limits<float>::infinity()));
+    // Nearer than the hit so far, or exactly as near (a shared edge or vertex, or a surface seen
+    // twice) with a smaller tie key.
+    const auto tie_won =
+        simd::both(simd::both(ahead, t == tmax), simd::greater(packet_.key + base, id.key, F{}));
+    const auto wins = simd::either(simd::both(ahead, t < tmax), tie_won);
+    if (!simd::any(wins)) return false;
+    const auto first_hit = simd::both(wins, tmax == F(std::numeric_limits<float>::infinity()));
     packet_.rays_without_hit -= std::popcount(simd::bits(first_hit));
-    simd::store_where(closer, t, packet_.tmax + base);
-    simd::store_where(closer, id.key, packet_.key + base);
-    simd::store_where(closer, id.tet, packet_.tet + base);
-    simd::store_where(closer, id.iso, packet_.iso + base);
-    simd::store_where(closer, F(s.normal.x), packet_.nx + base);
-    simd::store_where(closer, F(s.normal.y), packet_.ny + base);
-    simd::store_where(closer, F(s.normal.z), packet_.nz + base);
+    simd::store_where(wins, t, packet_.tmax + base);
+    simd::store_where(wins, id.key, packet_.key + base);
+    simd::store_where(wins, id.tet, packet_.tet + base);
+    simd::store_where(wins, id.iso, packet_.iso + base);
+    simd::store_where(wins, F(s.normal.x), packet_.nx + base);
+    simd::store_where(wins, F(s.normal.y), packet_.ny + base);
+    simd::store_where(wins, F(s.normal.z), packet_.nz + base);
     return true;
-  }
-
-  // Rays whose nearest hit so far lies at exactly this distance (a shared edge or vertex, or a
-  // surface seen twice) keep the hit with the smaller key: rare, so done ray by ray.
-  bool break_ties(const Setup& s, const PolygonHit& id, int base, F t, std::uint64_t lanes) {
-    if (!lanes) return false;
-    alignas(64) float ts[W];
-    simd::store(ts, t);
-    bool updated = false;
-    for (; lanes; lanes &= lanes - 1) {
-      const int r = base + std::countr_zero(lanes);
-      if (packet_.key[r] <= id.key) continue;
-      packet_.tmax[r] = ts[r - base];
-      packet_.key[r] = id.key;
-      packet_.tet[r] = id.tet;
-      packet_.iso[r] = id.iso;
-      packet_.nx[r] = s.normal.x;
-      packet_.ny[r] = s.normal.y;
-      packet_.nz[r] = s.normal.z;
-      updated = true;
-    }
-    return updated;
   }
 
   static F edge_value(Vec3f n, F dx, F dy, F dz) { return n.x * dx + n.y * dy + n.z * dz; }

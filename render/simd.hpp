@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 namespace tetray::render::simd {
@@ -107,6 +108,16 @@ template <typename T>
 inline void store_where(bool m, T value, T* p) {
   if (m) *p = value;
 }
+
+// Lanes where the unsigned integers at p (aligned for a batch) exceed `value`: compared as
+// signed integers with the sign bits flipped, which keeps the unsigned order.
+inline Mask greater(const std::uint32_t* p, std::uint32_t value, Floats) {
+  using Ints32 = xsimd::batch<std::int32_t>;
+  const Ints32 flip(std::numeric_limits<std::int32_t>::min());
+  const Ints32 lanes = Ints32::load_aligned(reinterpret_cast<const std::int32_t*>(p)) ^ flip;
+  return xsimd::bool_cast(lanes > (Ints32(static_cast<std::int32_t>(value)) ^ flip));
+}
+inline bool greater(const std::uint32_t* p, std::uint32_t value, float) { return *p > value; }
 
 inline Mask either(Mask a, Mask b) { return a | b; }
 inline bool either(bool a, bool b) { return a || b; }
