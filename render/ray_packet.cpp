@@ -87,10 +87,10 @@ template void setup_packet<8>(RayPacket<8>&, const Camera&, const CameraFrame&,
                               const PixelDirections&, Vec3d, int, int);
 template void setup_packet<16>(RayPacket<16>&, const Camera&, const CameraFrame&,
                                const PixelDirections&, Vec3d, int, int);
-template void update_tmax_bound<1>(RayPacket<1>&);
-template void update_tmax_bound<8>(RayPacket<8>&);
 template void setup_packet<32>(RayPacket<32>&, const Camera&, const CameraFrame&,
                                const PixelDirections&, Vec3d, int, int);
+template void update_tmax_bound<1>(RayPacket<1>&);
+template void update_tmax_bound<8>(RayPacket<8>&);
 template void update_tmax_bound<16>(RayPacket<16>&);
 template void update_tmax_bound<32>(RayPacket<32>&);
 

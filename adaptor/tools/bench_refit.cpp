@@ -85,16 +85,16 @@ double step_ms(const GyroidTwist& start, const render::Camera& camera, int steps
   render::TetVolume volume;
   render::Bvh bvh;
   load_scene(start, volume, bvh);
-  std::vector<double> step_ms;
+  std::vector<double> times;
   render::Framebuffer image;
   for (int s = 1; s < steps; ++s) {
     const StepArrays arrays = step_arrays(start.mesh, s * kTimeStep);
-    step_ms.push_back(best_ms(kRepetitions, [&] {
+    times.push_back(best_ms(kRepetitions, [&] {
       last = update(volume, bvh, arrays.points, arrays.field, kGeometryAndField);
       trace_scene(volume, bvh, camera, packet, image);
     }));
   }
-  return step_ms.empty() ? 0.0 : median(step_ms);
+  return times.empty() ? 0.0 : median(times);
 }
 
 // The steps in 16x16 packets (issue 4's definition) and in the default ones; then the strong
