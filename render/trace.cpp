@@ -110,7 +110,11 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
       const float fmax = std::max(std::max(v[0]->f, v[1]->f), std::max(v[2]->f, v[3]->f));
       if constexpr (kStats) ++stats.isorange_tests;
       if (!f.isos.straddled_by(fmin, fmax)) continue;
-      if (S > 1 && traversal.frustum_misses(tet_bounds(f.volume, tet))) continue;
+      if constexpr (S > 1) {
+        Bounds4Builder box;  // from the corners already loaded, not the tet again
+        for (const Vertex* corner : v) box.grow(*corner);
+        if (traversal.frustum_misses(box.bounds())) continue;
+      }
       for (int k = 0; k < f.isos.count && f.isos.values[k] <= fmax; ++k) {
         if (!range_straddles(fmin, fmax, f.isos.values[k])) continue;
         if constexpr (kStats) ++stats.isopolygon_extractions;
