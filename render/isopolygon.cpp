@@ -24,8 +24,8 @@ constexpr std::array<IsoCase, 16> make_cases() {
       const int* others = na == 1 ? below : above;
       entry.vertex_count = 3;
       for (int k = 0; k < 4; ++k) {
-        entry.edges[k][0] = static_cast<std::uint8_t>(lone);
-        entry.edges[k][1] = static_cast<std::uint8_t>(others[k % 3]);
+        entry.ends[0][k] = lone;
+        entry.ends[1][k] = others[k % 3];
       }
       continue;
     }
@@ -33,8 +33,8 @@ constexpr std::array<IsoCase, 16> make_cases() {
     const int order[4][2] = {
         {above[0], below[0]}, {above[0], below[1]}, {above[1], below[1]}, {above[1], below[0]}};
     for (int k = 0; k < 4; ++k) {
-      entry.edges[k][0] = static_cast<std::uint8_t>(order[k][0]);
-      entry.edges[k][1] = static_cast<std::uint8_t>(order[k][1]);
+      entry.ends[0][k] = order[k][0];
+      entry.ends[1][k] = order[k][1];
     }
   }
   return table;

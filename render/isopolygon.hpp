@@ -14,22 +14,34 @@
 namespace tetray::render {
 
 struct IsoCase {
-  std::uint8_t vertex_count;  // 0, 3 or 4
-  std::uint8_t edges[4][2];   // tet vertex pairs, in order around the polygon; a triangle's
-                              // first edge again as the fourth
+  // ends[e][k]: the tet vertex at end e of edge k, the edges in order around the polygon (a
+  // triangle's first edge again as the fourth); as 32-bit lanes, to permute the corners with.
+  alignas(16) std::int32_t ends[2][4];
+  std::int32_t vertex_count;  // 0, 3 or 4
 };
 
 // The table for case = sum of (f_i >= iso) << i.
 const std::array<IsoCase, 16>& iso_cases();
 
-// The case of a tet for an isovalue.
-inline int iso_case(const Vertex* v[4], float iso) {
-  return (v[0]->f >= iso ? 1 : 0) | (v[1]->f >= iso ? 2 : 0) | (v[2]->f >= iso ? 4 : 0) |
-         (v[3]->f >= iso ? 8 : 0);
+// A tet's four vertices as components: lane k of column c is component c (x, y, z, f) of
+// vertex k.
+struct TetCorners {
+  simd::Float4 column[4];
+};
+
+inline TetCorners load_corners(const TetVolume& volume, const Tet& tet) {
+  const simd::Float4 rows[4] = {
+      simd::load_float4(volume.vertices[tet.v[0]]), simd::load_float4(volume.vertices[tet.v[1]]),
+      simd::load_float4(volume.vertices[tet.v[2]]), simd::load_float4(volume.vertices[tet.v[3]])};
+  TetCorners corners;
+  simd::transpose4(rows, corners.column);
+  return corners;
 }
 
-// A tet holds a piece of the isosurface iff some vertex is below and some at or above.
-inline bool range_straddles(float fmin, float fmax, float iso) { return fmin < iso && iso <= fmax; }
+// The case of a tet for an isovalue: 0 or 15 when the tet holds none of its surface.
+inline int iso_case(const TetCorners& corners, float iso) {
+  return simd::bits4(corners.column[3] >= simd::Float4(iso));
+}
 
 // Every polygon has four corners: a triangle repeats its first as the fourth (the table lists
 // its first edge twice), so the kernels run one branch-free path over four lanes; the repeated
@@ -40,15 +52,6 @@ struct Isopolygon {
   simd::Float4 xyz[3];   // x, y, z of the corners (corner k in lane k), relative to the
                          // volume's local origin
 };
-
-// The ends of four tet edges, as components (x, y, z, f; edge k in lane k).
-inline void gather_ends(const Vertex* v[4], const IsoCase& entry, int end,
-                        simd::Float4 (&ends)[4]) {
-  const simd::Float4 rows[4] = {
-      simd::load_float4(*v[entry.edges[0][end]]), simd::load_float4(*v[entry.edges[1][end]]),
-      simd::load_float4(*v[entry.edges[2][end]]), simd::load_float4(*v[entry.edges[3][end]])};
-  simd::transpose4(rows, ends);
-}
 
 // The points where the isosurface crosses the four edges (a_k, b_k), one per lane. The two ends
 // of an edge are ordered by position, then value (not by index), so every tet sharing the edge,
@@ -77,14 +80,17 @@ inline void edge_crossings(const simd::Float4 (&a)[4], const simd::Float4 (&b)[4
   }
 }
 
-// The isopolygon of a tet for an isovalue; vertex_count 0 when the tet holds none.
-inline Isopolygon extract_isopolygon(const Vertex* v[4], float iso) {
-  const IsoCase& entry = iso_cases()[iso_case(v, iso)];
+// The isopolygon of a tet for an isovalue and its case (iso_case; 0 and 15 give none). The
+// edge ends are the corners permuted by the case's lanes.
+inline Isopolygon extract_isopolygon(const TetCorners& corners, int case_index, float iso) {
+  const IsoCase& entry = iso_cases()[case_index];
   Isopolygon poly;
   poly.vertex_count = entry.vertex_count;
   simd::Float4 a[4], b[4];
-  gather_ends(v, entry, 0, a);
-  gather_ends(v, entry, 1, b);
+  for (int c = 0; c < 4; ++c) {
+    a[c] = simd::permute(corners.column[c], entry.ends[0]);
+    b[c] = simd::permute(corners.column[c], entry.ends[1]);
+  }
   edge_crossings(a, b, iso, poly.xyz);
   return poly;
 }

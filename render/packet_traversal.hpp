@@ -13,26 +13,12 @@
 #include <span>
 
 #include "render/bvh.hpp"
+#include "render/iso_set.hpp"
 #include "render/isopolygon.hpp"
 #include "render/ray_packet.hpp"
 #include "render/trace.hpp"
 
 namespace tetray::render {
-
-// Sorted isovalues of a frame.
-struct IsoSet {
-  float values[kMaxIsovalues];
-  int count = 0;
-
-  // Some isovalue lies in (fmin, fmax], the sign rule's crossing condition.
-  bool straddled_by(float fmin, float fmax) const {
-    for (int k = 0; k < count; ++k) {
-      if (values[k] > fmax) return false;
-      if (values[k] > fmin) return true;
-    }
-    return false;
-  }
-};
 
 // Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance grows by
 // 1 + 2 gamma(3), so rounding never lets a ray miss a box around a surface it hits.

@@ -43,10 +43,12 @@ void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, 
 
 template <int S>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
-                  const PixelDirections& directions, Vec3d origin, int x0, int y0) {
+                  const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
+                  int x0, int y0) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   packet.eye = static_cast<Vec3f>(frame.eye - origin);
   const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
+  packet.frustum = frustum;
   for (int row = 0; row < S; ++row)
     setup_row(packet, directions, x0, std::min(y0 + row, y1), row, y0 + row <= y1, x1 - x0 + 1);
   constexpr int n = RayPacket<S>::kRays;
@@ -82,13 +84,13 @@ void update_tmax_bound(RayPacket<S>& packet) {
 }
 
 template void setup_packet<1>(RayPacket<1>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, int, int);
+                              const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
 template void setup_packet<8>(RayPacket<8>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, int, int);
+                              const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
 template void setup_packet<16>(RayPacket<16>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, int, int);
+                               const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
 template void setup_packet<32>(RayPacket<32>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, int, int);
+                               const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
 template void update_tmax_bound<1>(RayPacket<1>&);
 template void update_tmax_bound<8>(RayPacket<8>&);
 template void update_tmax_bound<16>(RayPacket<16>&);

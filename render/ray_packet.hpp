@@ -1,13 +1,16 @@
 // A packet of S x S primary rays sharing the eye (seed 000 §3: 16 x 16 by default), stored as
-// structure of arrays for the SIMD kernels, with the interval bounds of its directions used by
-// the frustum tests (seed 000 §4.3, §5.2 III). Rays of a packet that fall off the image repeat a
-// pixel at the edge (so the frustum stays tight) and start with tmax = -inf, so they hit nothing.
+// structure of arrays for the SIMD kernels, with the interval bounds of its directions (the
+// node test of seed 000 §5.2 III) and its corner-ray frustum (§4.3, packet_frustum.hpp: the tet
+// and isopolygon tests). Rays of a packet that fall off the image repeat a pixel at the edge (so
+// the frustum stays tight) and start with tmax = -inf, so they hit nothing.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "render/camera.hpp"
 #include "render/framebuffer.hpp"
+#include "render/packet_frustum.hpp"
 #include "render/simd.hpp"
 
 namespace tetray::render {
@@ -27,6 +30,7 @@ struct alignas(64) RayPacket {
   alignas(64) float nx[kRays], ny[kRays], nz[kRays];  // unnormalized normal at that hit
 
   Vec3f eye;                   // relative to the volume's origin
+  PacketFrustum frustum;       // of the rays in the image
   float inv_lo[3], inv_hi[3];  // interval of the inverse directions, per axis
   bool inv_straddles[3];       // the directions have both signs on this axis
   float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
@@ -38,10 +42,21 @@ struct alignas(64) RayPacket {
   float row_center = 0, row_scale = 0;
 };
 
-// Fills `packet` with the rays of the tile whose top-left pixel is (x0, y0).
+// The frustum of the tile of S x S pixels whose top-left pixel is (x0, y0) (its part in the
+// image); `magnitude` bounds the coordinates (relative to the volume's origin) of the eye and
+// every vertex (make_packet_frustum).
+template <int S>
+PacketFrustum tile_frustum(const Camera& camera, const CameraFrame& frame, float magnitude, int x0,
+                           int y0) {
+  return make_packet_frustum(camera, frame, x0, y0, std::min(x0 + S, camera.width) - 1,
+                             std::min(y0 + S, camera.height) - 1, magnitude);
+}
+
+// Fills `packet` with the rays of that tile, whose frustum is given.
 template <int S>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
-                  const PixelDirections& directions, Vec3d origin, int x0, int y0);
+                  const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
+                  int x0, int y0);
 
 // The largest tmax of the packet's rays (computed once every ray in the image has a hit).
 template <int S>

@@ -54,6 +54,30 @@ inline Float4 next_lane(Float4 v) {
       v, xsimd::batch_constant<xsimd::batch<std::uint32_t, Float4::arch_type>, 1, 2, 3, 0>());
 }
 
+// Lane k of the result is lane lanes[k] of v (lanes aligned to 16 bytes): one shuffle where the
+// CPU has a variable one (AVX's vpermilps).
+inline Float4 permute(Float4 v, const std::int32_t* lanes) {
+#if XSIMD_WITH_AVX
+  return _mm_permutevar_ps(v, _mm_load_si128(reinterpret_cast<const __m128i*>(lanes)));
+#else
+  alignas(16) float in[4], out[4];
+  v.store_aligned(in);
+  for (int k = 0; k < 4; ++k) out[k] = in[lanes[k]];
+  return Float4::load_aligned(out);
+#endif
+}
+
+// Bit k set when lane k of `m` is set.
+inline int bits4(Mask4 m) {
+#if XSIMD_WITH_SSE2
+  return _mm_movemask_ps(m);
+#else
+  alignas(16) bool lanes[4];
+  m.store_aligned(lanes);
+  return int{lanes[0]} | int{lanes[1]} << 1 | int{lanes[2]} << 2 | int{lanes[3]} << 3;
+#endif
+}
+
 // Lanewise lexicographic a < b over N components: the first component that differs decides.
 // Compares only, so the result is exact and needs no branch.
 template <int N>
@@ -107,6 +131,44 @@ inline void store_where(Mask m, T value, T* p) {
 template <typename T>
 inline void store_where(bool m, T value, T* p) {
   if (m) *p = value;
+}
+
+// 0, 1, 2, ... in the lanes of an integer batch.
+inline Ints lane_indices() {
+  static_assert(kWidth <= 16);
+  alignas(64) static constexpr std::int32_t kLanes[16] = {0, 1, 2,  3,  4,  5,  6,  7,
+                                                          8, 9, 10, 11, 12, 13, 14, 15};
+  return Ints::load_aligned(kLanes);
+}
+
+// Lane k of the result is base[index[k]]: one gather instruction where the CPU has one (xsimd 8
+// falls back to a load per lane). The AVX-512 forms take an explicit start value: GCC 12 reports
+// the undefined one of the plain forms as uninitialized.
+inline Floats gather(const float* base, Ints index) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xffff, index, base, sizeof(float));
+#elif XSIMD_WITH_AVX2
+  return _mm256_i32gather_ps(base, index, sizeof(float));
+#else
+  alignas(64) std::int32_t lanes[kWidth];
+  alignas(64) float out[kWidth];
+  index.store_aligned(lanes);
+  for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
+  return Floats::load_aligned(out);
+#endif
+}
+inline Ints gather(const std::int32_t* base, Ints index) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xffff, index, base,
+                                     sizeof(std::int32_t));
+#elif XSIMD_WITH_AVX2
+  return _mm256_i32gather_epi32(base, index, sizeof(std::int32_t));
+#else
+  alignas(64) std::int32_t lanes[kWidth], out[kWidth];
+  index.store_aligned(lanes);
+  for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
+  return Ints::load_aligned(out);
+#endif
 }
 
 // Lanes where the unsigned integers at p (aligned for a batch) exceed `value`: compared as

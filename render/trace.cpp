@@ -7,18 +7,41 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
-#include "render/bounds.hpp"
 #include "render/isopolygon_intersect.hpp"
 #include "render/packet_traversal.hpp"
 #include "render/shade.hpp"
+#include "render/tet_straddle.hpp"
 
 namespace tetray::render {
 namespace {
 
 constexpr int kBlock = 32;  // pixels a side of a parallel task, a multiple of every packet size
+
+// What the frustum tests need of the volume: the root's box relative to the eye (a packet whose
+// frustum misses it sees only background) and the largest absolute coordinate of the eye and of
+// the tets' vertices (make_packet_frustum).
+struct VolumeExtent {
+  Vec3f lo, hi;
+  float magnitude = 0;
+};
+
+VolumeExtent volume_extent(const Bvh& bvh, Vec3f eye) {
+  VolumeExtent extent;
+  extent.magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)});
+  if (bvh.empty()) return extent;
+  const Bounds4& root = bvh.nodes[0].bounds;
+  for (int a = 0; a < 3; ++a) {
+    extent.lo[a] = root.lo[a] - eye[a];
+    extent.hi[a] = root.hi[a] - eye[a];
+    extent.magnitude = std::max({extent.magnitude, std::abs(root.lo[a]), std::abs(root.hi[a])});
+  }
+  return extent;
+}
 
 struct Frame {
   const TetVolume& volume;
@@ -27,6 +50,7 @@ struct Frame {
   CameraFrame view;
   PixelDirections directions;
   IsoSet isos;
+  VolumeExtent extent;
   int surface_of_sorted[kMaxIsovalues];
   ShadeContext shade;
 };
@@ -53,20 +77,33 @@ void write_row(T* to, const T* from, int count) {
   }
 }
 
-// Writes the packet's pixels that lie in the image, row by row: the background, or the shaded
-// hit.
+// Writes the packet's rows that lie in the image, each composed in the cache first by
+// compose(row, columns, out).
+template <int S, typename Compose>
+void write_rows(const Frame& f, int x0, int y0, Framebuffer& image, Compose&& compose) {
+  const int columns = std::min(S, f.camera.width - x0);
+  PixelRow<S> out;
+  for (int row = 0; row < S && y0 + row < f.camera.height; ++row) {
+    compose(row, columns, out);
+    const std::size_t p0 = image.index(x0, y0 + row);
+    write_row(&image.rgba[4 * p0], out.rgba, 4 * columns);
+    write_row(&image.depth[p0], out.depth, columns);
+    write_row(&image.hit[p0], out.hit, columns);
+  }
+  simd::stream_fence();
+}
+
+// Writes the packet's pixels: the background, or the shaded hit.
 template <int S, bool kStats>
 void write_pixels(const Frame& f, const RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
                   TraceStats& stats) {
   constexpr int n = RayPacket<S>::kRays;
-  constexpr float kInf = std::numeric_limits<float>::infinity();
   alignas(64) float light[n], depth[n];
   light_and_depth(
       f.shade, {packet.dx, packet.dy, packet.dz, packet.nx, packet.ny, packet.nz, packet.tmax, n},
       light, depth);
-  const int columns = std::min(S, f.camera.width - x0);
-  PixelRow<S> out;
-  for (int row = 0; row < S && y0 + row < f.camera.height; ++row) {
+  write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
+    constexpr float kInf = std::numeric_limits<float>::infinity();
     const int r0 = row * S;
     const std::int32_t* tet = packet.tet + r0;
     for (int c = 0; c < columns; ++c) {
@@ -85,45 +122,74 @@ void write_pixels(const Frame& f, const RayPacket<S>& packet, int x0, int y0, Fr
                   packet.iso[r], light[r], rgba);
     }
     if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
-    const std::size_t p0 = image.index(x0, y0 + row);
-    write_row(&image.rgba[4 * p0], out.rgba, 4 * columns);
-    write_row(&image.depth[p0], out.depth, columns);
-    write_row(&image.hit[p0], out.hit, columns);
-  }
-  simd::stream_fence();
+  });
 }
 
+// A packet whose frustum misses the whole volume: background, without setting up its rays.
 template <int S, bool kStats>
-void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
-  RayPacket<S> packet;
-  setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, x0, y0);
-  PacketTraversal<S, kStats> traversal(f.bvh, f.isos, packet, stats);
-  IsopolygonIntersector<S, kStats> intersector(packet, stats);
-  traversal.run([&](const BvhNode& leaf, int first_active) {
-    bool hit = false;
-    for (std::uint32_t t = leaf.first; t < leaf.first + leaf.count; ++t) {
-      const Tet& tet = f.volume.tets[t];
-      const Vertex* v[4] = {&f.volume.vertices[tet.v[0]], &f.volume.vertices[tet.v[1]],
-                            &f.volume.vertices[tet.v[2]], &f.volume.vertices[tet.v[3]]};
-      // The value range first: most tets of a leaf hold no isosurface, and need no box.
-      const float fmin = std::min(std::min(v[0]->f, v[1]->f), std::min(v[2]->f, v[3]->f));
-      const float fmax = std::max(std::max(v[0]->f, v[1]->f), std::max(v[2]->f, v[3]->f));
-      if constexpr (kStats) ++stats.isorange_tests;
-      if (!f.isos.straddled_by(fmin, fmax)) continue;
+void write_background(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
+  write_rows<S>(f, x0, y0, image, [&](int, int columns, PixelRow<S>& out) {
+    std::fill_n(out.rgba, 4 * columns, 0.0f);
+    std::fill_n(out.depth, columns, std::numeric_limits<float>::infinity());
+    std::fill_n(out.hit, columns, kNoHit);
+    if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
+  });
+}
+
+// The tet's hull lies outside the packet's frustum, behind the eye or beyond every ray's hit so
+// far.
+template <int S>
+bool frustum_misses_tet(const RayPacket<S>& packet, const TetCorners& corners) {
+  const simd::Float4 q[3] = {corners.column[0] - packet.eye.x, corners.column[1] - packet.eye.y,
+                             corners.column[2] - packet.eye.z};
+  return packet.frustum.misses_hull(q) || packet.frustum.outside_depths(q, packet.tmax_bound);
+}
+
+// Intersects the isopolygons of the leaf's tets that straddle an isovalue (§5.2 V) and, for
+// packets, meet the packet's frustum; returns whether any ray got a new nearest hit.
+template <int S, bool kStats>
+bool intersect_leaf(const Frame& f, const BvhNode& leaf, int first_active,
+                    IsopolygonIntersector<S, kStats>& intersector, const RayPacket<S>& packet,
+                    TraceStats& stats) {
+  bool hit = false;
+  const std::uint32_t end = leaf.first + leaf.count;
+  for (std::uint32_t batch = leaf.first; batch < end; batch += simd::kWidth) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(simd::kWidth, end - batch));
+    if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
+    for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
+         straddling &= straddling - 1) {
+      const std::uint32_t t = batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
+      const TetCorners corners = load_corners(f.volume, f.volume.tets[t]);
       if constexpr (S > 1) {
-        Bounds4Builder box;  // from the corners already loaded, not the tet again
-        for (const Vertex* corner : v) box.grow(*corner);
-        if (traversal.frustum_misses(box.bounds())) continue;
+        if (frustum_misses_tet(packet, corners)) continue;
       }
-      for (int k = 0; k < f.isos.count && f.isos.values[k] <= fmax; ++k) {
-        if (!range_straddles(fmin, fmax, f.isos.values[k])) continue;
+      for (int k = 0; k < f.isos.count; ++k) {
+        const int case_index = iso_case(corners, f.isos.values[k]);
+        if (case_index == 0 || case_index == 15) continue;
         if constexpr (kStats) ++stats.isopolygon_extractions;
-        const Isopolygon poly = extract_isopolygon(v, f.isos.values[k]);
+        const Isopolygon poly = extract_isopolygon(corners, case_index, f.isos.values[k]);
         const PolygonHit id{f.volume.tet_ids[t], static_cast<std::int32_t>(t), k};
         hit |= intersector.intersect(poly, id, first_active);
       }
     }
-    if (hit) update_tmax_bound(packet);
+  }
+  return hit;
+}
+
+template <int S, bool kStats>
+void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
+  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
+  if constexpr (S > 1) {
+    if (f.bvh.empty() || frustum.misses_box(f.extent.lo, f.extent.hi))
+      return write_background<S, kStats>(f, x0, y0, image, stats);
+  }
+  RayPacket<S> packet;
+  setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, x0, y0);
+  PacketTraversal<S, kStats> traversal(f.bvh, f.isos, packet, stats);
+  IsopolygonIntersector<S, kStats> intersector(packet, stats);
+  traversal.run([&](const BvhNode& leaf, int first_active) {
+    if (intersect_leaf(f, leaf, first_active, intersector, packet, stats))
+      update_tmax_bound(packet);
   });
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
@@ -202,6 +268,7 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
           view,
           PixelDirections(view, camera),
           {},
+          volume_extent(bvh, static_cast<Vec3f>(view.eye - volume.origin)),
           {},
           {volume, view, surfaces, nullptr, options}};
   f.shade.surface_of_sorted = f.surface_of_sorted;

@@ -11,11 +11,10 @@
 #include "render/camera.hpp"
 #include "render/colormap.hpp"
 #include "render/framebuffer.hpp"
+#include "render/iso_set.hpp"
 #include "render/tet_volume.hpp"
 
 namespace tetray::render {
-
-inline constexpr int kMaxIsovalues = 16;
 
 struct Rgb {
   float r = 1, g = 1, b = 1;
