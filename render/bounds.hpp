@@ -46,6 +46,16 @@ struct Bounds4Builder {
   void grow(const TetVolume& volume, const Tet& tet) {
     for (std::int32_t v : tet.v) grow(volume.vertices[v]);
   }
+  // The terms of half the surface area of the box in x, y, z (the SAH's measure): the
+  // products of its extents ex ey, ey ez, ez ex in lanes 0 to 2 (lane 3 holds nothing of use),
+  // so that sums of areas can be kept in the lanes of a register.
+  simd::Float4 area_terms() const {
+    const simd::Float4 e = hi - lo;
+    return e * xsimd::swizzle(
+                   e, xsimd::batch_constant<xsimd::batch<std::uint32_t, simd::Float4::arch_type>, 1,
+                                            2, 0, 3>());
+  }
+  float half_area() const { return simd::sum3(area_terms()); }
   Bounds4 bounds() const {
     Bounds4 b;
     lo.store_unaligned(b.lo);
@@ -54,16 +64,17 @@ struct Bounds4Builder {
   }
 };
 
+inline float half_area(const Bounds4& b) {
+  Bounds4Builder builder;
+  builder.grow(b);
+  return builder.half_area();
+}
+
 // 4D bounds of one tet.
 inline Bounds4 tet_bounds(const TetVolume& volume, const Tet& tet) {
   Bounds4Builder b;
   b.grow(volume, tet);
   return b.bounds();
-}
-
-inline float half_area(const Bounds4& b) {
-  const float ex = b.hi[0] - b.lo[0], ey = b.hi[1] - b.lo[1], ez = b.hi[2] - b.lo[2];
-  return ex * ey + ey * ez + ez * ex;
 }
 
 }  // namespace tetray::render

@@ -101,7 +101,7 @@ struct Bin {
 
 // Half the surface area of the tets binned so far (zero while none are).
 float binned_area(const Bounds4Builder& box, std::uint32_t count) {
-  return count ? half_area(box.bounds()) : 0.0f;
+  return count ? box.half_area() : 0.0f;
 }
 using AxisBins = std::array<std::array<Bin, kSahBins>, 3>;
 

@@ -14,64 +14,68 @@
 namespace tetray::render {
 namespace {
 
-// Writes dimensions [first_axis, 4) of `b` into `node`: 0 for x, y, z and f, 3 for the scalar
-// range alone (a field-only refit leaves the geometry as it is).
-void set_bounds(BvhNode& node, const Bounds4& b, int first_axis) {
-  for (int a = first_axis; a < 4; ++a) {
-    node.bounds.lo[a] = b.lo[a];
-    node.bounds.hi[a] = b.hi[a];
-  }
+// A leaf's bound is that of its listed vertices: all four dimensions from whole vertices, or
+// the scalar range alone from their values (a field-only refit leaves the geometry as it is).
+Bounds4Builder leaf_bound(const TetVolume& volume, const Bvh& bvh, std::uint32_t i) {
+  const std::uint32_t begin = bvh.leaf_vertex_begin[i];
+  Bounds4Builder b;
+  simd::min_max_rows(&volume.vertices.data()->x, bvh.leaf_vertices.data() + begin,
+                     static_cast<int>(bvh.leaf_vertex_begin[i + 1] - begin), b.lo, b.hi);
+  return b;
 }
 
-// Two bounds grown in turn and merged: two independent min/max chains instead of one, which
-// halves the latency a leaf waits on (about 5% of a refit; four chains were slower again).
-template <bool geometry>
-void fit_leaf(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
-  Bounds4Builder even, odd;
-  const std::uint32_t end = bvh.leaf_vertex_begin[i + 1];
-  std::uint32_t k = bvh.leaf_vertex_begin[i];
-  for (; k + 1 < end; k += 2) {
-    even.grow(volume.vertices[bvh.leaf_vertices[k]]);
-    odd.grow(volume.vertices[bvh.leaf_vertices[k + 1]]);
-  }
-  if (k < end) even.grow(volume.vertices[bvh.leaf_vertices[k]]);
-  even.grow(odd.bounds());
-  set_bounds(node, even.bounds(), geometry ? 0 : 3);
+void fit_leaf_range(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
+  const std::uint32_t begin = bvh.leaf_vertex_begin[i];
+  simd::min_max_component(&volume.vertices.data()->x, 3, bvh.leaf_vertices.data() + begin,
+                          static_cast<int>(bvh.leaf_vertex_begin[i + 1] - begin), node.bounds.lo[3],
+                          node.bounds.hi[3]);
 }
 
-template <bool geometry>
-void fit_inner(std::vector<BvhNode>& nodes, BvhNode& node) {
+Bounds4Builder inner_bound(const std::vector<BvhNode>& nodes, const BvhNode& node) {
   Bounds4Builder b;
   b.grow(nodes[node.first].bounds);
   b.grow(nodes[node.first + 1].bounds);
-  set_bounds(node, b.bounds(), geometry ? 0 : 3);
+  return b;
 }
 
-// Fits node i and returns its term of the SAH cost (needed only when the geometry changed).
+// Fits node i and, when the geometry changed, adds its terms of the SAH cost to `cost` (the
+// area terms weighted by the node's tets, one for an inner node), from the bound still in
+// registers: a node's own work is a few cycles, and a chain of scalar additions over every node
+// was a seventh of a refit.
 template <bool geometry>
-double fit_node(const TetVolume& volume, Bvh& bvh, std::uint32_t i) {
+void fit_node(const TetVolume& volume, Bvh& bvh, std::uint32_t i, simd::Float4& cost) {
   BvhNode& node = bvh.nodes[i];
-  if (node.is_leaf()) {
-    fit_leaf<geometry>(volume, bvh, i, node);
-    return geometry ? static_cast<double>(half_area(node.bounds)) * node.count : 0.0;
+  if constexpr (geometry) {
+    const bool leaf = node.is_leaf();
+    const Bounds4Builder b = leaf ? leaf_bound(volume, bvh, i) : inner_bound(bvh.nodes, node);
+    node.bounds = b.bounds();
+    cost = cost + b.area_terms() * simd::Float4(leaf ? static_cast<float>(node.count) : 1.0f);
+  } else if (node.is_leaf()) {
+    fit_leaf_range(volume, bvh, i, node);
+  } else {
+    const Bounds4 b = inner_bound(bvh.nodes, node).bounds();
+    node.bounds.lo[3] = b.lo[3];
+    node.bounds.hi[3] = b.hi[3];
   }
-  fit_inner<geometry>(bvh.nodes, node);
-  return geometry ? half_area(node.bounds) : 0.0;
 }
 
 template <bool geometry>
 void refit(const TetVolume& volume, Bvh& bvh) {
-  std::vector<double> subtree_cost(bvh.subtrees.size());
+  // Lanewise sums in a fixed order per subtree, then over the subtrees in order: the cost does
+  // not depend on the thread count.
+  std::vector<simd::Float4> subtree_cost(bvh.subtrees.size(), simd::Float4(0.0f));
   tbb::parallel_for(std::size_t{0}, bvh.subtrees.size(), [&](std::size_t s) {
     const Bvh::Subtree& st = bvh.subtrees[s];
-    double cost = 0;
-    for (std::uint32_t i = st.end; i-- > st.begin;) cost += fit_node<geometry>(volume, bvh, i);
-    subtree_cost[s] = cost + fit_node<geometry>(volume, bvh, st.root);
+    simd::Float4 cost(0.0f);
+    for (std::uint32_t i = st.end; i-- > st.begin;) fit_node<geometry>(volume, bvh, i, cost);
+    fit_node<geometry>(volume, bvh, st.root, cost);
+    subtree_cost[s] = cost;
   });
-  double cost = 0;
-  for (double c : subtree_cost) cost += c;
-  for (std::uint32_t i : bvh.top_nodes_bottom_up) cost += fit_node<geometry>(volume, bvh, i);
+  simd::Float4 top(0.0f);
+  for (std::uint32_t i : bvh.top_nodes_bottom_up) fit_node<geometry>(volume, bvh, i, top);
   if (geometry) {
+    double cost = simd::sum3(top);
+    for (const simd::Float4& c : subtree_cost) cost += simd::sum3(c);
     const float root_area = half_area(bvh.nodes[0].bounds);
     bvh.sah_cost_now = root_area > 0 ? cost / root_area : 0.0;
   }

@@ -6,6 +6,7 @@
 
 #include <xsimd/xsimd.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -65,6 +66,13 @@ inline Float4 permute(Float4 v, const std::int32_t* lanes) {
   for (int k = 0; k < 4; ++k) out[k] = in[lanes[k]];
   return Float4::load_aligned(out);
 #endif
+}
+
+// Lanes 0 + 1 + 2 of v, in that order.
+inline float sum3(Float4 v) {
+  alignas(16) float lanes[4];
+  v.store_aligned(lanes);
+  return lanes[0] + lanes[1] + lanes[2];
 }
 
 // Bit k set when lane k of `m` is set.
@@ -168,6 +176,83 @@ inline Ints gather(const std::int32_t* base, Ints index) {
   index.store_aligned(lanes);
   for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
   return Ints::load_aligned(out);
+#endif
+}
+
+// Component-wise minimum and maximum of the rows rows[index[k]], k in [0, count), count >= 1,
+// each row four floats (16-byte aligned). AVX-512 holds four rows in a register, so a leaf of a
+// dozen vertices takes three steps (a row repeated past the end changes neither bound); the
+// other targets grow two bounds in turn (two independent chains).
+inline void min_max_rows(const float* rows, const std::uint32_t* index, int count, Float4& lo,
+                         Float4& hi) {
+#if XSIMD_WITH_AVX512F
+  const int last = count - 1;
+  auto four_rows = [&](int k) {
+    auto row = [&](int j) {
+      return _mm_load_ps(rows + 4 * std::size_t{index[std::min(k + j, last)]});
+    };
+    __m512 v = _mm512_castps128_ps512(row(0));
+    v = _mm512_insertf32x4(v, row(1), 1);
+    v = _mm512_insertf32x4(v, row(2), 2);
+    return _mm512_insertf32x4(v, row(3), 3);
+  };
+  __m512 low = four_rows(0), high = low;
+  for (int k = 4; k < count; k += 4) {
+    const __m512 v = four_rows(k);
+    low = _mm512_mask_min_ps(low, 0xffff, low, v);  // masked forms: see gather
+    high = _mm512_mask_max_ps(high, 0xffff, high, v);
+  }
+  auto upper_half = [](__m512 v) {  // AVX-512F alone has the 64-bit form of the extract
+    return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1));
+  };
+  const __m256 low8 = _mm256_min_ps(_mm512_castps512_ps256(low), upper_half(low));
+  const __m256 high8 = _mm256_max_ps(_mm512_castps512_ps256(high), upper_half(high));
+  lo = _mm_min_ps(_mm256_castps256_ps128(low8), _mm256_extractf128_ps(low8, 1));
+  hi = _mm_max_ps(_mm256_castps256_ps128(high8), _mm256_extractf128_ps(high8, 1));
+#else
+  auto row = [&](int k) { return Float4::load_aligned(rows + 4 * std::size_t{index[k]}); };
+  Float4 lo_even = row(0), hi_even = lo_even, lo_odd = lo_even, hi_odd = lo_even;
+  int k = 1;
+  for (; k + 1 < count; k += 2) {
+    const Float4 a = row(k), b = row(k + 1);
+    lo_even = xsimd::min(lo_even, a);
+    hi_even = xsimd::max(hi_even, a);
+    lo_odd = xsimd::min(lo_odd, b);
+    hi_odd = xsimd::max(hi_odd, b);
+  }
+  if (k < count) {
+    lo_even = xsimd::min(lo_even, row(k));
+    hi_even = xsimd::max(hi_even, row(k));
+  }
+  lo = xsimd::min(lo_even, lo_odd);
+  hi = xsimd::max(hi_even, hi_odd);
+#endif
+}
+
+// Minimum and maximum of component `c` of the same rows: with AVX-512, sixteen rows' components
+// gathered at once.
+inline void min_max_component(const float* rows, int c, const std::uint32_t* index, int count,
+                              float& lo, float& hi) {
+#if XSIMD_WITH_AVX512F
+  const __m512 infinity = _mm512_set1_ps(std::numeric_limits<float>::infinity());
+  __m512 low = infinity, high = -infinity;
+  for (int k = 0; k < count; k += 16) {
+    const auto lanes = static_cast<__mmask16>((1u << std::min(16, count - k)) - 1);
+    const __m512i rows_at = _mm512_maskz_loadu_epi32(lanes, index + k);
+    const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(rows_at, 2), _mm512_set1_epi32(c));
+    const __m512 v = _mm512_mask_i32gather_ps(infinity, lanes, at, rows, sizeof(float));
+    low = _mm512_mask_min_ps(low, lanes, low, v);
+    high = _mm512_mask_max_ps(high, lanes, high, v);
+  }
+  lo = _mm512_reduce_min_ps(low);
+  hi = _mm512_reduce_max_ps(high);
+#else
+  lo = hi = rows[4 * std::size_t{index[0]} + c];
+  for (int k = 1; k < count; ++k) {
+    const float v = rows[4 * std::size_t{index[k]} + c];
+    lo = v < lo ? v : lo;
+    hi = v > hi ? v : hi;
+  }
 #endif
 }
 
