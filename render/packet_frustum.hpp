@@ -58,10 +58,10 @@ struct PacketFrustum {
   static constexpr float kDepthGrowth = 1.0f + 0x1p-16f;  // far above a distance's rounding
 };
 
-// The frustum of the packet whose rays run through pixel columns [x0, x1] and rows [y0, y1]
-// from `eye` (the packet's float eye, relative to the volume's origin). `magnitude` bounds the
-// absolute value of every coordinate the tests will see (vertices and eye, relative to the
-// origin): the slack covers the rounding of points computed from them (isopolygon corners
+// The frustum of the packet whose rays run through pixel columns [x0, x1] and rows [y0, y1]; the
+// tests take points relative to the packet's float eye. `magnitude` bounds the absolute value of
+// every coordinate the tests will see (vertices and eye, relative to the volume's origin): the
+// slack covers the rounding of points computed from them (isopolygon corners
 // leave a tet's hull by an ulp) and of the tests themselves, and each plane also leans out by
 // 1/16 pixel plus 1e-5 of its slope against the rounding of the rays' own directions.
 PacketFrustum make_packet_frustum(const Camera& camera, const CameraFrame& frame, int x0, int y0,

@@ -178,8 +178,9 @@ bool intersect_leaf(const Frame& f, const BvhNode& leaf, int first_active,
 
 template <int S, bool kStats>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
-  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
+  PacketFrustum frustum{};  // single rays use none
   if constexpr (S > 1) {
+    frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
     if (f.bvh.empty() || frustum.misses_box(f.extent.lo, f.extent.hi))
       return write_background<S, kStats>(f, x0, y0, image, stats);
   }
