@@ -43,7 +43,8 @@ struct TraceStats {
   std::uint64_t isorange_tests = 0;    // node and tet iso-range tests
   std::uint64_t isopolygon_extractions = 0;
   std::uint64_t ray_isopolygon_tests = 0;        // individual ray-isopolygon tests
-  std::uint64_t frustum_culled_isopolygons = 0;  // culled for the whole packet (no row covered)
+  std::uint64_t frustum_culled_isopolygons = 0;  // culled for the whole packet: outside its
+                                                 // frustum, or no row covered
 
   TraceStats& operator+=(const TraceStats& o);
 };
