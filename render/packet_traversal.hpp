@@ -58,6 +58,9 @@ class PacketTraversal {
     }
   }
 
+ private:
+  static constexpr int kStackSize = 128;  // the builders bound the depth well below this
+
   // Interval arithmetic over the packet's inverse directions: every ray's entry distance is at
   // least `enter` and its exit at most `leave`; rounding is monotonic, so the bounds hold for
   // the per-ray float computations too.
@@ -76,9 +79,6 @@ class PacketTraversal {
     }
     return enter > leave * kRobustFar || enter > packet_.tmax_bound;
   }
-
- private:
-  static constexpr int kStackSize = 128;  // the builders bound the depth well below this
 
   bool range_active(const BvhNode& n) {
     if constexpr (kStats) ++stats_.isorange_tests;

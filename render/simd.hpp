@@ -149,6 +149,16 @@ inline Ints lane_indices() {
   return Ints::load_aligned(kLanes);
 }
 
+// A load per lane: the gathers below where the CPU has no gather instruction.
+template <typename Batch, typename T>
+inline Batch gather_each_lane(const T* base, Ints index) {
+  alignas(64) std::int32_t lanes[kWidth];
+  alignas(64) T out[kWidth];
+  index.store_aligned(lanes);
+  for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
+  return Batch::load_aligned(out);
+}
+
 // Lane k of the result is base[index[k]]: one gather instruction where the CPU has one (xsimd 8
 // falls back to a load per lane). The AVX-512 forms take an explicit start value: GCC 12 reports
 // the undefined one of the plain forms as uninitialized.
@@ -158,11 +168,7 @@ inline Floats gather(const float* base, Ints index) {
 #elif XSIMD_WITH_AVX2
   return _mm256_i32gather_ps(base, index, sizeof(float));
 #else
-  alignas(64) std::int32_t lanes[kWidth];
-  alignas(64) float out[kWidth];
-  index.store_aligned(lanes);
-  for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
-  return Floats::load_aligned(out);
+  return gather_each_lane<Floats>(base, index);
 #endif
 }
 inline Ints gather(const std::int32_t* base, Ints index) {
@@ -172,10 +178,7 @@ inline Ints gather(const std::int32_t* base, Ints index) {
 #elif XSIMD_WITH_AVX2
   return _mm256_i32gather_epi32(base, index, sizeof(std::int32_t));
 #else
-  alignas(64) std::int32_t lanes[kWidth], out[kWidth];
-  index.store_aligned(lanes);
-  for (int k = 0; k < kWidth; ++k) out[k] = base[lanes[k]];
-  return Ints::load_aligned(out);
+  return gather_each_lane<Ints>(base, index);
 #endif
 }
 
