@@ -40,7 +40,7 @@ ReferenceFigures measure_reference(const GyroidTwist& scene, const render::Camer
   ref.triangles = contour.triangles.triangle_count();
   ref.embree_build_ms = embree.build_ms;
   ref.embree_trace_ms = embree.trace_ms;
-  ref.embree_trace_mode = embree.trace_mode;
+  ref.embree_packets = embree.packets;
   ref.depth_agree_fraction = agreement.agree_fraction;
   ref.depth_median_rel_diff = agreement.median_rel_diff;
   return ref;
@@ -57,8 +57,8 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   TetrayRun tetray = measure_tetray(scene, camera);
   figures.tetray = std::move(tetray.figures);
   figures.ref = measure_reference(scene, camera, tetray.image, options.threads);
-  figures.refit = measure_refit(scene, camera, options.steps);
-  figures.refit.ref_step_total_ms = figures.ref.step_total_ms();
+  figures.refit =
+      measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
   figures.cpu_share =
       (process_cpu_seconds() - cpu_start) / (wall.elapsed_ms() * 1e-3 * options.threads);
   return figures;

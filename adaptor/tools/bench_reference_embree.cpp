@@ -159,32 +159,57 @@ void trace_packets(RTCScene scene, EmbreeImage& image) {
   });
 }
 
-// Best time of one trace mode after a warm-up, every repetition into the same image (as
-// tetray's frames are measured).
-template <typename Trace>
-double trace_ms(RTCScene scene, const render::Camera& camera, Trace trace) {
-  EmbreeImage image(camera);
-  trace(scene, image);
-  return best_ms(kRepetitions, [&] { trace(scene, image); });
-}
-
 }  // namespace
 
+struct EmbreeReference::State {
+  Device device;
+  Scene scene{nullptr, &rtcReleaseScene};
+  EmbreeImage image;
+
+  State(const render::Camera& camera, int threads) : device(make_device(threads)), image(camera) {}
+};
+
+EmbreeReference::EmbreeReference(const render::Camera& camera, int threads)
+    : state_(std::make_unique<State>(camera, threads)) {}
+
+EmbreeReference::~EmbreeReference() = default;
+
+double EmbreeReference::build_ms(const TriangleSoup& triangles) {
+  state_->scene = make_scene(state_->device.get(), triangles);
+  return time_ms([&] { rtcCommitScene(state_->scene.get()); });
+}
+
+double EmbreeReference::trace_ms(bool packets) {
+  return time_ms([&] {
+    if (packets) {
+      trace_packets(state_->scene.get(), state_->image);
+    } else {
+      trace_single_rays(state_->scene.get(), state_->image);
+    }
+  });
+}
+
+const std::vector<float>& EmbreeReference::depth() const { return state_->image.depth; }
+
+const char* embree_trace_mode(bool packets) { return packets ? "rtcIntersect16" : "rtcIntersect1"; }
+
+// Each figure the best of a few runs, the traces after a warm-up, every run into the same image
+// (as tetray's frames are measured).
 EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
                             int threads) {
-  const Device device = make_device(threads);
-  Scene scene(nullptr, &rtcReleaseScene);
+  EmbreeReference embree(camera, threads);
   EmbreeRun run;
-  run.build_ms = best_ms(
-      kRepetitions, [&] { scene = make_scene(device.get(), triangles); },
-      [&] { rtcCommitScene(scene.get()); });
-  const double single_ms = trace_ms(scene.get(), camera, trace_single_rays);
-  const double packet_ms = trace_ms(scene.get(), camera, trace_packets);
+  run.build_ms = best_of_ms(kRepetitions, [&] { return embree.build_ms(triangles); });
+  auto best_trace_ms = [&](bool packets) {
+    embree.trace_ms(packets);
+    return best_of_ms(kRepetitions, [&] { return embree.trace_ms(packets); });
+  };
+  const double single_ms = best_trace_ms(false);
+  const double packet_ms = best_trace_ms(true);
   run.trace_ms = std::min(single_ms, packet_ms);
-  run.trace_mode = single_ms <= packet_ms ? "rtcIntersect1" : "rtcIntersect16";
-  EmbreeImage image(camera);
-  trace_packets(scene.get(), image);
-  run.depth = std::move(image.depth);
+  run.packets = packet_ms < single_ms;
+  embree.trace_ms(true);
+  run.depth = embree.depth();
   return run;
 }
 

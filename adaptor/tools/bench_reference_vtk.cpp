@@ -31,20 +31,23 @@ vtkSmartPointer<Array> view_array(const std::vector<T>& values, int components) 
   return array;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> make_grid(const BoxMesh& mesh,
-                                               const std::vector<double>& field) {
-  vtkNew<vtkPoints> points;
-  points->SetData(view_array<vtkDoubleArray>(mesh.points, 3));
+vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<std::int64_t>& tets) {
   vtkNew<vtkCellArray> cells;
-  if (!cells->SetData(4, view_array<vtkAOSDataArrayTemplate<long>>(mesh.tets, 1)))
+  if (!cells->SetData(4, view_array<vtkAOSDataArrayTemplate<long>>(tets, 1)))
     throw std::runtime_error("VTK rejected the tet connectivity");
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(points);
   grid->SetCells(VTK_TETRA, cells);
+  return grid;
+}
+
+void set_grid_step(vtkUnstructuredGrid& grid, const std::vector<double>& points,
+                   const std::vector<double>& field) {
+  vtkNew<vtkPoints> grid_points;
+  grid_points->SetData(view_array<vtkDoubleArray>(points, 3));
+  grid.SetPoints(grid_points);
   auto scalars = view_array<vtkDoubleArray>(field, 1);
   scalars->SetName("f");
-  grid->GetPointData()->SetScalars(scalars);
-  return grid;
+  grid.GetPointData()->SetScalars(scalars);
 }
 
 TriangleSoup to_soup(vtkPolyData& surface) {
@@ -67,24 +70,49 @@ TriangleSoup to_soup(vtkPolyData& surface) {
 
 }  // namespace
 
-ContourRun contour_with_vtk(const BoxMesh& mesh, const std::vector<double>& field, double iso) {
-  const auto grid = make_grid(mesh, field);
-  vtkNew<vtkContour3DLinearGrid> contour;
-  contour->SetInputData(grid);
-  contour->SetValue(0, iso);
-  contour->SetMergePoints(false);
-  contour->SetInterpolateAttributes(false);
-  contour->SetComputeNormals(false);
-  contour->SetComputeScalars(false);
-  contour->SetSequentialProcessing(false);
-  contour->SetOutputPointsPrecision(vtkAlgorithm::SINGLE_PRECISION);
-  contour->Update();
-  ContourRun run;
-  run.contour_ms = best_ms(
-      kRepetitions, [&] { contour->Modified(); }, [&] { contour->Update(); });
-  auto* surface = vtkPolyData::SafeDownCast(contour->GetOutputDataObject(0));
+struct Contour::State {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  vtkNew<vtkContour3DLinearGrid> filter;
+};
+
+Contour::Contour(const std::vector<std::int64_t>& tets, double iso)
+    : state_(std::make_unique<State>()) {
+  state_->grid = make_grid(tets);
+  vtkContour3DLinearGrid& filter = *state_->filter;
+  filter.SetInputData(state_->grid);
+  filter.SetValue(0, iso);
+  filter.SetMergePoints(false);
+  filter.SetInterpolateAttributes(false);
+  filter.SetComputeNormals(false);
+  filter.SetComputeScalars(false);
+  filter.SetSequentialProcessing(false);
+  filter.SetOutputPointsPrecision(vtkAlgorithm::SINGLE_PRECISION);
+}
+
+Contour::~Contour() = default;
+
+void Contour::set_step(const std::vector<double>& points, const std::vector<double>& field) {
+  set_grid_step(*state_->grid, points, field);
+}
+
+double Contour::run_ms() {
+  state_->filter->Modified();
+  return time_ms([&] { state_->filter->Update(); });
+}
+
+TriangleSoup Contour::triangles() const {
+  auto* surface = vtkPolyData::SafeDownCast(state_->filter->GetOutputDataObject(0));
   if (surface == nullptr) throw std::runtime_error("the contour filter gave no polydata");
-  run.triangles = to_soup(*surface);
+  return to_soup(*surface);
+}
+
+ContourRun contour_with_vtk(const BoxMesh& mesh, const std::vector<double>& field, double iso) {
+  Contour contour(mesh.tets, iso);
+  contour.set_step(mesh.points, field);
+  contour.run_ms();
+  ContourRun run;
+  run.contour_ms = best_of_ms(kRepetitions, [&] { return contour.run_ms(); });
+  run.triangles = contour.triangles();
   return run;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "tetray/box_mesh.hpp"
@@ -25,5 +26,25 @@ struct ContourRun {
 };
 
 ContourRun contour_with_vtk(const BoxMesh& mesh, const std::vector<double>& field, double iso);
+
+// The contour filter kept across time steps, as an extract-then-render pipeline keeps it: each
+// step its input grid views that step's points and field (no copy), and only the filter's run
+// is timed.
+class Contour {
+ public:
+  Contour(const std::vector<std::int64_t>& tets, double iso);
+  ~Contour();
+  Contour(const Contour&) = delete;
+  Contour& operator=(const Contour&) = delete;
+
+  // Points (xyz interleaved) and field of the step; both must outlive the next run.
+  void set_step(const std::vector<double>& points, const std::vector<double>& field);
+  double run_ms();                 // the filter's run on the step set last
+  TriangleSoup triangles() const;  // of the last run
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace tetray::bench

@@ -1,10 +1,12 @@
 #include "bench_refit.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
 #include "bench_bandwidth.hpp"
+#include "bench_reference_step.hpp"
 #include "bench_scene.hpp"
 #include "bench_timing.hpp"
 
@@ -40,6 +42,7 @@ render::UpdatePolicy always_rebuild() {
 }
 
 double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
@@ -77,36 +80,50 @@ void measure_updates(const GyroidTwist& start, RefitFigures& figures) {
 }
 
 // The in-situ loop: each new step is ingested (geometry + field, the policy deciding between
-// refit and rebuild) and traced in `packet`s into the image kept from the step before. Each
-// step is the best of a few runs, as every figure of the bench and of the reference is (a run
-// again refits to the same positions: the same work). Returns the median over the steps.
-double step_ms(const GyroidTwist& start, const render::Camera& camera, int steps,
-               render::PacketSize packet, render::UpdateResult& last) {
+// refit and rebuild) and traced into the image kept from the step before, in 16x16 packets and
+// in the default ones; the reference contours, builds and traces the same step. The three are
+// timed in turn, a few times each, so that they share the machine's conditions: each figure of
+// a step is its best run (a run again refits to the same positions: the same work), and each
+// total the median over the steps.
+void measure_steps(const GyroidTwist& start, const render::Camera& camera, const StepOptions& o,
+                   RefitFigures& figures) {
   render::TetVolume volume;
   render::Bvh bvh;
   load_scene(start, volume, bvh);
-  std::vector<double> times;
-  render::Framebuffer image;
-  for (int s = 1; s < steps; ++s) {
-    const StepArrays arrays = step_arrays(start.mesh, s * kTimeStep);
-    times.push_back(best_ms(kRepetitions, [&] {
+  ReferenceStep reference(start.mesh.tets, camera, o.threads, o.reference_packets);
+  render::Framebuffer image_16x16, image_default;
+  std::vector<double> times_16x16, times_default, times_reference;
+  render::UpdateResult last;
+  auto tetray_step_ms = [&](const StepArrays& arrays, render::PacketSize packet,
+                            render::Framebuffer& image) {
+    return time_ms([&] {
       last = update(volume, bvh, arrays.points, arrays.field, kGeometryAndField);
       trace_scene(volume, bvh, camera, packet, image);
-    }));
+    });
+  };
+  for (int s = 1; s < o.steps; ++s) {
+    const StepArrays arrays = step_arrays(start.mesh, s * kTimeStep);
+    double best_16x16 = std::numeric_limits<double>::infinity();
+    double best_default = best_16x16, best_reference = best_16x16;
+    for (int r = 0; r < kRepetitions; ++r) {
+      best_16x16 =
+          std::min(best_16x16, tetray_step_ms(arrays, render::PacketSize::p16x16, image_16x16));
+      best_default = std::min(best_default,
+                              tetray_step_ms(arrays, render::TraceOptions{}.packet, image_default));
+      best_reference = std::min(best_reference, reference.run_ms(arrays.points, arrays.field));
+    }
+    times_16x16.push_back(best_16x16);
+    times_default.push_back(best_default);
+    times_reference.push_back(best_reference);
   }
-  return times.empty() ? 0.0 : median(times);
+  figures.step_total_ms = median(times_16x16);
+  figures.step_total_default_ms = median(times_default);
+  figures.ref_step_total_ms = median(times_reference);
+  figures.quality_ratio_after_steps = last.quality_ratio;
 }
 
-// The steps in 16x16 packets (issue 4's definition) and in the default ones; then the strong
-// deformation.
-void measure_steps(const GyroidTwist& start, const render::Camera& camera, int steps,
-                   RefitFigures& figures) {
-  render::UpdateResult last;
-  figures.step_total_default_ms =
-      step_ms(start, camera, steps, render::TraceOptions{}.packet, last);
-  figures.step_total_ms = step_ms(start, camera, steps, render::PacketSize::p16x16, last);
-  figures.quality_ratio_after_steps = last.quality_ratio;
-
+// A deformation far beyond the benchmark's steps: the policy's decision.
+void measure_strong_deformation(const GyroidTwist& start, RefitFigures& figures) {
   render::TetVolume volume;
   render::Bvh bvh;
   load_scene(start, volume, bvh);
@@ -118,10 +135,12 @@ void measure_steps(const GyroidTwist& start, const render::Camera& camera, int s
 
 }  // namespace
 
-RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera, int steps) {
+RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera,
+                           const StepOptions& options) {
   RefitFigures figures;
   measure_updates(start, figures);
-  measure_steps(start, camera, steps, figures);
+  measure_steps(start, camera, options, figures);
+  measure_strong_deformation(start, figures);
   return figures;
 }
 

@@ -9,8 +9,15 @@
 
 namespace tetray::bench {
 
+struct StepOptions {
+  int steps = 5;                  // t = 0, 0.1, ... including the start
+  int threads = 1;                // of the reference's Embree device
+  bool reference_packets = true;  // the reference traces in 16-ray packets, else single rays
+};
+
 // `start` is the scene at t = 0, where the twist is zero: its points are the reference that
-// later steps deform. `steps` counts t = 0, 0.1, ... including the start.
-RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera, int steps);
+// later steps deform.
+RefitFigures measure_refit(const GyroidTwist& start, const render::Camera& camera,
+                           const StepOptions& options);
 
 }  // namespace tetray::bench

@@ -33,7 +33,7 @@ struct ReferenceFigures {
   std::size_t triangles = 0;
   double embree_build_ms = 0;
   double embree_trace_ms = 0;
-  std::string embree_trace_mode;  // the faster of Embree's single-ray and packet traces
+  bool embree_packets = false;  // the faster of Embree's traces is the packet one, not single rays
   double depth_agree_fraction = 0;
   double depth_median_rel_diff = 0;
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "bench_reference_embree.hpp"
 #include "bench_targets.hpp"
 #include "bench_timing.hpp"
 
@@ -34,7 +35,7 @@ void print_reference(const ReferenceFigures& r) {
       "  reference      VTK contour %.1f ms (%.2f M triangles), Embree build %.1f ms,"
       " trace %.1f ms (%s)\n",
       r.contour_ms, mega(r.triangles), r.embree_build_ms, r.embree_trace_ms,
-      r.embree_trace_mode.c_str());
+      embree_trace_mode(r.embree_packets));
   std::printf("  depth check    %.4f%% of pixels agree on hit/miss, median rel diff %.2e\n",
               100 * r.depth_agree_fraction, r.depth_median_rel_diff);
 }
@@ -47,7 +48,7 @@ void print_refit(const RefitFigures& r) {
       r.bound_geometry_ms, mega(r.bytes_geometry), r.rebuild_ms);
   std::printf(
       "  in-situ step   %.1f ms (update + trace 16x16), %.1f ms (update + trace %s, the default)"
-      " vs reference %.1f ms (contour + Embree build + trace)\n",
+      " vs reference %.1f ms (contour + Embree build + trace of the same steps)\n",
       r.step_total_ms, r.step_total_default_ms, render::to_string(render::TraceOptions{}.packet),
       r.ref_step_total_ms);
   std::printf(

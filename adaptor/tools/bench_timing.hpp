@@ -47,4 +47,12 @@ double best_ms(int repetitions, Work&& work) {
       repetitions, [] {}, work);
 }
 
+// Best of `repetitions` runs of `measure`, which times (a part of) its own work and returns ms.
+template <typename Measure>
+double best_of_ms(int repetitions, Measure&& measure) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < repetitions; ++r) best = std::min(best, measure());
+  return best;
+}
+
 }  // namespace tetray::bench

@@ -59,6 +59,9 @@ TEST(BenchSmoke, JsonHasEveryKey) {
                   "ref_step_total_ms", "quality_ratio_after_steps"});
   EXPECT_GT(scene["ref"]["triangles"].asUInt64(), 0u);
   EXPECT_GT(scene["ref"]["depth_agree_fraction"].asDouble(), 0.9);
+  // --steps 2: one new step, measured for tetray and for the reference.
+  EXPECT_GT(scene["refit"]["step_total_ms"].asDouble(), 0.0);
+  EXPECT_GT(scene["refit"]["ref_step_total_ms"].asDouble(), 0.0);
 }
 
 }  // namespace
