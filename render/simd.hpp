@@ -182,6 +182,43 @@ inline Ints gather(const std::int32_t* base, Ints index) {
 #endif
 }
 
+// Column c of the result holds element c of each of `count` consecutive groups of four int32
+// (1 <= count <= kWidth; a tet's corner indices), group k in lane k; lanes past `count` hold 0.
+// AVX-512 loads the groups as they lie and moves them into columns with eight two-register
+// permutes, a fraction of the cost of the four gathers the other targets use.
+inline void quad_columns(const std::int32_t* groups, int count, Ints (&column)[4]) {
+#if XSIMD_WITH_AVX512F
+  static_assert(kWidth == 16);
+  auto load = [&](int q) {  // groups 4q .. 4q + 3, the lanes past the last group zero
+    const int valid = std::clamp(4 * (count - 4 * q), 0, 16);
+    const auto lanes = static_cast<__mmask16>((1u << valid) - 1);
+    return _mm512_maskz_loadu_epi32(lanes, groups + 16 * q);
+  };
+  // From two registers of four groups each: element e of the eight groups in lanes 0-7, element
+  // e + 1 in lanes 8-15 (kPairs[0]: e = 0, kPairs[1]: e = 2); then from two such registers, the
+  // lower or upper halves of each (kHalves).
+  alignas(64) static constexpr std::int32_t kPairs[2][16] = {
+      {0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29},
+      {2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31}};
+  alignas(64) static constexpr std::int32_t kHalves[2][16] = {
+      {0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23},
+      {8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31}};
+  const __m512i q[4] = {load(0), load(1), load(2), load(3)};
+  for (int p = 0; p < 2; ++p) {
+    const __m512i pair = _mm512_load_si512(kPairs[p]);
+    const __m512i first = _mm512_permutex2var_epi32(q[0], pair, q[1]);
+    const __m512i second = _mm512_permutex2var_epi32(q[2], pair, q[3]);
+    for (int h = 0; h < 2; ++h)
+      column[2 * p + h] = _mm512_permutex2var_epi32(first, _mm512_load_si512(kHalves[h]), second);
+  }
+#else
+  const Ints lane = lane_indices(), last(count - 1);
+  const Ints first_element = xsimd::select(lane < last, lane, last) * 4;  // never past the groups
+  for (int c = 0; c < 4; ++c)
+    column[c] = xsimd::select(lane <= last, gather(groups, first_element + c), Ints(0));
+#endif
+}
+
 // Component-wise minimum and maximum of the rows rows[index[k]], k in [0, count), count >= 1,
 // each row four floats (16-byte aligned). AVX-512 holds four rows in a register, so a leaf of a
 // dozen vertices takes three steps (a row repeated past the end changes neither bound); the

@@ -1,7 +1,7 @@
 // Which tets of a leaf hold a piece of some isosurface, a batch at a time (seed 000 §5.2 V: a
 // tet's own range is tested before anything else about it). Most tets of a leaf hold none; one
 // by one, each cost a branch that went either way at random and four scalar loads; here the
-// batch's corner indices and values are gathered into lanes and tested together.
+// batch's corner indices are moved into lanes, their values gathered, and tested together.
 #pragma once
 
 #include <algorithm>
@@ -17,16 +17,13 @@ namespace tetray::render {
 inline std::uint64_t straddling_tets(const TetVolume& volume, std::uint32_t first, int count,
                                      const IsoSet& isos) {
   using simd::Floats, simd::Ints;
-  // Lanes past `count` repeat the last tet (no read past the leaf) and are dropped below.
+  // Lanes past `count` read vertex 0 (which every volume with tets has) and are dropped below.
   // (Compares and selects for min and max: GCC 12 reports its AVX-512 min and max as reading
   // an uninitialized value.)
-  const Ints lane = simd::lane_indices(), last(count - 1);
-  const Ints corner0 = xsimd::select(lane < last, lane, last) * 4;
-  const std::int32_t* corners = volume.tets[first].v.data();
+  Ints corner[4];
+  simd::quad_columns(volume.tets[first].v.data(), count, corner);
   const float* values = &volume.vertices.data()->f;  // a vertex is 4 floats, f the last
-  auto corner_values = [&](int c) {
-    return simd::gather(values, simd::gather(corners, corner0 + c) * 4);
-  };
+  auto corner_values = [&](int c) { return simd::gather(values, corner[c] * 4); };
   Floats lo = corner_values(0), hi = lo;
   for (int c = 1; c < 4; ++c) {
     const Floats f = corner_values(c);
