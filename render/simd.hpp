@@ -192,7 +192,8 @@ inline void quad_columns(const std::int32_t* groups, int count, Ints (&column)[4
   auto load = [&](int q) {  // groups 4q .. 4q + 3, the lanes past the last group zero
     const int valid = std::clamp(4 * (count - 4 * q), 0, 16);
     const auto lanes = static_cast<__mmask16>((1u << valid) - 1);
-    return _mm512_maskz_loadu_epi32(lanes, groups + 16 * q);
+    // A register wholly past the groups loads nothing, from an address within them.
+    return _mm512_maskz_loadu_epi32(lanes, groups + 16 * std::min(q, (count - 1) / 4));
   };
   // From two registers of four groups each: element e of the eight groups in lanes 0-7, element
   // e + 1 in lanes 8-15 (kPairs[0]: e = 0, kPairs[1]: e = 2); then from two such registers, the

@@ -24,8 +24,8 @@ const char* embree_trace_mode(bool packets);
 EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
                             int threads);
 
-// Embree kept across time steps: one device, each step a new scene over that step's triangles,
-// traced into one kept image.
+// Embree kept across time steps: one device, each step a new scene over that step's triangles
+// (kept beside the scene, whose buffers share them), traced into one kept image.
 class EmbreeReference {
  public:
   EmbreeReference(const render::Camera& camera, int threads);
@@ -33,9 +33,9 @@ class EmbreeReference {
   EmbreeReference(const EmbreeReference&) = delete;
   EmbreeReference& operator=(const EmbreeReference&) = delete;
 
-  // Builds the scene over `triangles` (which must outlive the traces); times the commit alone.
-  double build_ms(const TriangleSoup& triangles);
-  // One trace of the last scene into the kept image, in 16-ray packets or single rays.
+  // Builds the scene over `triangles`, replacing the last one; times the commit alone.
+  double build_ms(TriangleSoup triangles);
+  // One trace of the last scene built into the kept image, in 16-ray packets or single rays.
   double trace_ms(bool packets);
   const std::vector<float>& depth() const;
 

@@ -11,8 +11,7 @@ ReferenceStep::ReferenceStep(const std::vector<std::int64_t>& tets, const render
 double ReferenceStep::run_ms(const std::vector<double>& points, const std::vector<double>& field) {
   contour_.set_step(points, field);
   const double contour_ms = contour_.run_ms();
-  triangles_ = contour_.triangles();
-  const double build_ms = embree_.build_ms(triangles_);
+  const double build_ms = embree_.build_ms(contour_.triangles());
   return contour_ms + build_ms + embree_.trace_ms(packets_);
 }
 

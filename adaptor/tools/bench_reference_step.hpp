@@ -14,6 +14,7 @@ namespace tetray::bench {
 class ReferenceStep {
  public:
   // `packets`: trace in Embree's 16-ray packets, else in single rays (the faster at t = 0).
+  // `tets` must outlive the reference (the contour's grid views it).
   ReferenceStep(const std::vector<std::int64_t>& tets, const render::Camera& camera, int threads,
                 bool packets);
 
@@ -25,7 +26,6 @@ class ReferenceStep {
   Contour contour_;
   EmbreeReference embree_;
   bool packets_;
-  TriangleSoup triangles_;
 };
 
 }  // namespace tetray::bench

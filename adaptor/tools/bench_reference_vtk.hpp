@@ -32,6 +32,7 @@ ContourRun contour_with_vtk(const BoxMesh& mesh, const std::vector<double>& fiel
 // is timed.
 class Contour {
  public:
+  // `tets` (4 point indices per tet) must outlive the contour: its grid views them.
   Contour(const std::vector<std::int64_t>& tets, double iso);
   ~Contour();
   Contour(const Contour&) = delete;

@@ -1,7 +1,7 @@
 #include "bench_refit.hpp"
 
 #include <algorithm>
-#include <limits>
+#include <array>
 #include <stdexcept>
 #include <vector>
 
@@ -82,9 +82,9 @@ void measure_updates(const GyroidTwist& start, RefitFigures& figures) {
 // The in-situ loop: each new step is ingested (geometry + field, the policy deciding between
 // refit and rebuild) and traced into the image kept from the step before, in 16x16 packets and
 // in the default ones; the reference contours, builds and traces the same step. The three are
-// timed in turn, a few times each, so that they share the machine's conditions: each figure of
-// a step is its best run (a run again refits to the same positions: the same work), and each
-// total the median over the steps.
+// timed in turn, a few times each (best_in_turn_ms): each figure of a step is its best run (a
+// run again refits to the same positions: the same work), and each total the median over the
+// steps.
 void measure_steps(const GyroidTwist& start, const render::Camera& camera, const StepOptions& o,
                    RefitFigures& figures) {
   render::TetVolume volume;
@@ -92,7 +92,6 @@ void measure_steps(const GyroidTwist& start, const render::Camera& camera, const
   load_scene(start, volume, bvh);
   ReferenceStep reference(start.mesh.tets, camera, o.threads, o.reference_packets);
   render::Framebuffer image_16x16, image_default;
-  std::vector<double> times_16x16, times_default, times_reference;
   render::UpdateResult last;
   auto tetray_step_ms = [&](const StepArrays& arrays, render::PacketSize packet,
                             render::Framebuffer& image) {
@@ -101,24 +100,20 @@ void measure_steps(const GyroidTwist& start, const render::Camera& camera, const
       trace_scene(volume, bvh, camera, packet, image);
     });
   };
+  enum Figure { kStep16x16, kStepDefault, kReference, kFigures };
+  std::array<std::vector<double>, kFigures> times;
   for (int s = 1; s < o.steps; ++s) {
     const StepArrays arrays = step_arrays(start.mesh, s * kTimeStep);
-    double best_16x16 = std::numeric_limits<double>::infinity();
-    double best_default = best_16x16, best_reference = best_16x16;
-    for (int r = 0; r < kRepetitions; ++r) {
-      best_16x16 =
-          std::min(best_16x16, tetray_step_ms(arrays, render::PacketSize::p16x16, image_16x16));
-      best_default = std::min(best_default,
-                              tetray_step_ms(arrays, render::TraceOptions{}.packet, image_default));
-      best_reference = std::min(best_reference, reference.run_ms(arrays.points, arrays.field));
-    }
-    times_16x16.push_back(best_16x16);
-    times_default.push_back(best_default);
-    times_reference.push_back(best_reference);
+    const auto best = best_in_turn_ms<kFigures>(
+        kRepetitions,
+        {[&] { return tetray_step_ms(arrays, render::PacketSize::p16x16, image_16x16); },
+         [&] { return tetray_step_ms(arrays, render::TraceOptions{}.packet, image_default); },
+         [&] { return reference.run_ms(arrays.points, arrays.field); }});
+    for (int k = 0; k < kFigures; ++k) times[k].push_back(best[k]);
   }
-  figures.step_total_ms = median(times_16x16);
-  figures.step_total_default_ms = median(times_default);
-  figures.ref_step_total_ms = median(times_reference);
+  figures.step_total_ms = median(times[kStep16x16]);
+  figures.step_total_default_ms = median(times[kStepDefault]);
+  figures.ref_step_total_ms = median(times[kReference]);
   figures.quality_ratio_after_steps = last.quality_ratio;
 }
 

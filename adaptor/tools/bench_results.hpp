@@ -36,8 +36,6 @@ struct ReferenceFigures {
   bool embree_packets = false;  // the faster of Embree's traces is the packet one, not single rays
   double depth_agree_fraction = 0;
   double depth_median_rel_diff = 0;
-
-  double step_total_ms() const { return contour_ms + embree_build_ms + embree_trace_ms; }
 };
 
 // Issue 4: a new time step on the same topology. The bounds are memcpy times of the bytes each

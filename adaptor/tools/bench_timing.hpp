@@ -4,7 +4,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <functional>
 #include <limits>
 
 namespace tetray::bench {
@@ -52,6 +54,22 @@ template <typename Measure>
 double best_of_ms(int repetitions, Measure&& measure) {
   double best = std::numeric_limits<double>::infinity();
   for (int r = 0; r < repetitions; ++r) best = std::min(best, measure());
+  return best;
+}
+
+// The best of `repetitions` runs of each measure (as in best_of_ms), the measures run in turn so
+// that they share the conditions of a shared machine, in an order that rotates from repetition
+// to repetition so that none always follows the same one (and finds its caches).
+template <std::size_t N>
+std::array<double, N> best_in_turn_ms(int repetitions,
+                                      const std::array<std::function<double()>, N>& measures) {
+  std::array<double, N> best;
+  best.fill(std::numeric_limits<double>::infinity());
+  for (int r = 0; r < repetitions; ++r)
+    for (std::size_t k = 0; k < N; ++k) {
+      const std::size_t m = (k + static_cast<std::size_t>(r)) % N;
+      best[m] = std::min(best[m], measures[m]());
+    }
   return best;
 }
 

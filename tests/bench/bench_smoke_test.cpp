@@ -61,6 +61,7 @@ TEST(BenchSmoke, JsonHasEveryKey) {
   EXPECT_GT(scene["ref"]["depth_agree_fraction"].asDouble(), 0.9);
   // --steps 2: one new step, measured for tetray and for the reference.
   EXPECT_GT(scene["refit"]["step_total_ms"].asDouble(), 0.0);
+  EXPECT_GT(scene["refit"]["step_total_default_packet_ms"].asDouble(), 0.0);
   EXPECT_GT(scene["refit"]["ref_step_total_ms"].asDouble(), 0.0);
 }
 

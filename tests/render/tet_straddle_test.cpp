@@ -1,10 +1,16 @@
 // The leaf's batched straddle test (render/tet_straddle.hpp) against the one-tet test of the
 // same rule: random tets over a small vertex store, every batch size from 1 to the SIMD width,
-// batches ending at the last tet of the volume (nothing may be read past it), isovalues on
-// vertex values, between them and outside their range.
+// batches ending at the last tet of the volume, isovalues on vertex values, between them and
+// outside their range. And the corner columns it is built on (simd::quad_columns), on groups
+// that end at an inaccessible page: nothing past the last group may be read.
 #include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <random>
 
 #include "render/tet_straddle.hpp"
@@ -64,6 +70,50 @@ TEST(TetStraddle, EveryBatchMatchesTheOneTetTest) {
     }
   }
   EXPECT_GT(straddling, 0);  // the sets above do cut tets
+}
+
+// Two pages, the second inaccessible: groups placed to end at the boundary fault if read past.
+class GuardedPage {
+ public:
+  GuardedPage() : page_(static_cast<std::size_t>(sysconf(_SC_PAGESIZE))) {
+    void* memory =
+        mmap(nullptr, 2 * page_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (memory != MAP_FAILED) base_ = static_cast<std::byte*>(memory);
+    if (base_ && mprotect(base_ + page_, page_, PROT_NONE) != 0) base_ = nullptr;
+  }
+  ~GuardedPage() {
+    if (base_) munmap(base_, 2 * page_);
+  }
+  GuardedPage(const GuardedPage&) = delete;
+  GuardedPage& operator=(const GuardedPage&) = delete;
+
+  bool ok() const { return base_ != nullptr; }
+  // `count` int32 values ending where the inaccessible page begins.
+  std::int32_t* ints_before_guard(int count) const {
+    return reinterpret_cast<std::int32_t*>(base_ + page_) - count;
+  }
+
+ private:
+  std::size_t page_;
+  std::byte* base_ = nullptr;
+};
+
+TEST(TetStraddle, CornerColumnsReadNothingPastTheGroups) {
+  const GuardedPage guarded;
+  ASSERT_TRUE(guarded.ok());
+  for (int count = 1; count <= render::simd::kWidth; ++count) {
+    std::int32_t* groups = guarded.ints_before_guard(4 * count);
+    for (int i = 0; i < 4 * count; ++i) groups[i] = 1000 + i;
+    render::simd::Ints column[4];
+    render::simd::quad_columns(groups, count, column);
+    alignas(64) std::int32_t lanes[render::simd::kWidth];
+    for (int c = 0; c < 4; ++c) {
+      column[c].store_aligned(lanes);
+      for (int k = 0; k < render::simd::kWidth; ++k)
+        EXPECT_EQ(lanes[k], k < count ? 1000 + 4 * k + c : 0)
+            << "element " << c << ", lane " << k << ", " << count << " groups";
+    }
+  }
 }
 
 }  // namespace
