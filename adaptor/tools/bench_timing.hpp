@@ -31,30 +31,28 @@ double time_ms(Work&& work) {
   return watch.elapsed_ms();
 }
 
-// Best of `repetitions` timed runs of `work`; `prepare` runs untimed before each (e.g. to
-// restore an input that `work` consumes).
-template <typename Prepare, typename Work>
-double best_ms(int repetitions, Prepare&& prepare, Work&& work) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repetitions; ++r) {
-    prepare();
-    best = std::min(best, time_ms(work));
-  }
-  return best;
-}
-
-template <typename Work>
-double best_ms(int repetitions, Work&& work) {
-  return best_ms(
-      repetitions, [] {}, work);
-}
-
 // Best of `repetitions` runs of `measure`, which times (a part of) its own work and returns ms.
 template <typename Measure>
 double best_of_ms(int repetitions, Measure&& measure) {
   double best = std::numeric_limits<double>::infinity();
   for (int r = 0; r < repetitions; ++r) best = std::min(best, measure());
   return best;
+}
+
+// Best of `repetitions` timed runs of `work`; `prepare` runs untimed before each (e.g. to
+// restore an input that `work` consumes).
+template <typename Prepare, typename Work>
+double best_ms(int repetitions, Prepare&& prepare, Work&& work) {
+  return best_of_ms(repetitions, [&] {
+    prepare();
+    return time_ms(work);
+  });
+}
+
+template <typename Work>
+double best_ms(int repetitions, Work&& work) {
+  return best_ms(
+      repetitions, [] {}, work);
 }
 
 // The best of `repetitions` runs of each measure (as in best_of_ms), the measures run in turn so
