@@ -9,10 +9,10 @@
 #include "color_field.hpp"
 #include "input_views.hpp"
 #include "output_files.hpp"
-#include "render/composite.hpp"
-#include "render/mesh_check.hpp"
-#include "render/trace.hpp"
-#include "stopwatch.hpp"
+#include "render/composite/composite.hpp"
+#include "render/volume/mesh_check.hpp"
+#include "render/trace/trace.hpp"
+#include "render/core/stopwatch.hpp"
 
 namespace tetray {
 namespace {
@@ -95,7 +95,7 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
                               std::span<const FieldView> fields, const Changes& changes,
                               ExecuteReport* report) {
   if (finalized_) return {StatusCode::not_initialized, "execute called after finalize"};
-  const Stopwatch blocked;
+  const render::Stopwatch blocked;
   // Changes accumulate over off-trigger calls: a volume sees everything since its last update.
   epochs_.geometry += changes.geometry;
   epochs_.topology += changes.topology;
@@ -178,7 +178,7 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
       if (!e.empty()) return invalid(e);
     }
   }
-  const Stopwatch ingest;
+  const render::Stopwatch ingest;
   if (std::string e = convert_topology(mesh.tets); !e.empty()) return invalid(e);
   first_due_scene()->record.ingest_ms += ingest.ms();
   bool loading = false;
@@ -206,7 +206,7 @@ std::string Adaptor::Impl::convert_topology(const TetsView& tets) {
 
 Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
                                    std::span<const FieldView> fields) {
-  const Stopwatch watch;
+  const render::Stopwatch watch;
   FieldVolume& volume = volumes_[v];
   const render::PointSource points = point_source(mesh.points);
   const CheckedIndices now{epochs_.topology, mesh.points.count};
@@ -244,7 +244,7 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     FieldVolume& volume = volumes_[v];
     tets_skipped_ += skipped_[v];
     if (!volume.stale(epochs_)) continue;  // nothing it reads changed: no refit
-    const Stopwatch watch;
+    const render::Stopwatch watch;
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
     const render::UpdateResult result = volume.update(inputs, epochs_, config_.bvh, origin_);
@@ -270,7 +270,7 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
       }
     }
     if (s.colormap != nullptr && s.config.color_range.automatic) {
-      const Stopwatch watch;
+      const render::Stopwatch watch;
       ranges[3] = local_field_range(field_or_empty(fields, s.config.color_by));
       s.record.color_ms += watch.ms();
     }
@@ -286,7 +286,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     render::TraceOptions options;
     options.ambient = s.config.ambient;
     if (s.colormap != nullptr) {
-      const Stopwatch watch;
+      const render::Stopwatch watch;
       render::load_color_field(volume.volume(),
                                field_source(field_or_empty(fields, s.config.color_by)));
       render::ValueRange range =
@@ -297,7 +297,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
       options.color_by = {s.colormap, static_cast<float>(range.lo), static_cast<float>(range.hi)};
       s.record.color_ms += watch.ms();
     }
-    const Stopwatch watch;
+    const render::Stopwatch watch;
     s.image = render::trace(volume.volume(), volume.bvh(), camera_for(s, 1 + 4 * k),
                             s.config.surfaces, options);
     s.record.trace_ms = watch.ms();
@@ -355,7 +355,7 @@ Status Adaptor::Impl::composite_and_submit() {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
     if (comm_.size > 1) {
-      const Stopwatch watch;
+      const render::Stopwatch watch;
       const render::CompositeOptions options{.root = writer};
       if (int rc = render::composite(s.image, comm_.comm, options); rc != MPI_SUCCESS) {
         return {StatusCode::mpi_error,

@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "render/global_reduce.hpp"
+#include "render/composite/global_reduce.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {

@@ -3,7 +3,7 @@
 // Only scenes with color_by call these.
 #pragma once
 
-#include "render/global_reduce.hpp"
+#include "render/composite/global_reduce.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.hpp"
-#include "render/mesh_check.hpp"
-#include "render/trace.hpp"
-#include "render/volume_update.hpp"
+#include "render/trace/camera.hpp"
+#include "render/volume/mesh_check.hpp"
+#include "render/trace/trace.hpp"
+#include "render/update/volume_update.hpp"
 
 namespace tetray::config {
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "render/colormap.hpp"
+#include "render/trace/colormap.hpp"
 #include "yaml_reader.hpp"
 
 namespace tetray::config {

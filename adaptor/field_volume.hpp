@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "render/bvh.hpp"
-#include "render/mesh_check.hpp"
-#include "render/tet_volume.hpp"
-#include "render/volume_update.hpp"
+#include "render/bvh/bvh.hpp"
+#include "render/volume/mesh_check.hpp"
+#include "render/volume/tet_volume.hpp"
+#include "render/update/volume_update.hpp"
 
 namespace tetray {
 

@@ -1,6 +1,6 @@
 #include "image_writer.hpp"
 
-#include "stopwatch.hpp"
+#include "render/core/stopwatch.hpp"
 
 namespace tetray {
 
@@ -24,7 +24,7 @@ void ImageWriter::submit(ImageJob job) {
     write(job);
     return;
   }
-  const Stopwatch waiting;
+  const render::Stopwatch waiting;
   std::unique_lock lock(mutex_);
   changed_.wait(lock,
                 [&] { return queue_.size() < static_cast<std::size_t>(output_.queue_depth); });

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "render/global_reduce.hpp"
-#include "render/volume_update.hpp"
+#include "render/composite/global_reduce.hpp"
+#include "render/update/volume_update.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {

@@ -9,8 +9,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "render/image_write.hpp"
-#include "stopwatch.hpp"
+#include "render/image/image_write.hpp"
+#include "render/core/stopwatch.hpp"
 
 namespace tetray {
 namespace {
@@ -154,18 +154,18 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
   for (const char* format : {"exr", "png"}) {
     const bool exr = format[0] == 'e';
     if (!(exr ? output.exr : output.png)) continue;
-    const Stopwatch encoding;
+    const render::Stopwatch encoding;
     const render::EncodedImage encoded =
         exr ? render::encode_exr(job.image) : render::encode_png(job.image, output.png_compression);
     r.encode_ms += encoding.ms();
     if (!encoded.ok()) return encoded.error;
-    const Stopwatch writing;
+    const render::Stopwatch writing;
     const auto written = render::write_file_atomically(
         image_path(output.directory, r.scene, r.step, format), encoded.bytes);
     r.write_ms += writing.ms();
     if (!written.ok) return written.message;
   }
-  const Stopwatch appending;
+  const render::Stopwatch appending;
   if (output.cinema) {
     if (auto e = append_line(cinema_path(output.directory, r.scene), cinema_row(output, r));
         !e.empty()) {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "config.hpp"
-#include "render/framebuffer.hpp"
+#include "render/core/framebuffer.hpp"
 #include "step_record.hpp"
 
 namespace tetray {

@@ -1,7 +1,7 @@
 // vtkUnstructuredGrid -> TetGrid: the conversion behind the VTK bridge, tetray-render and
 // tetray-replay. Only VTK_TETRA cells are accepted; everything is copied into plain arrays so
 // that the renderer never sees a VTK type.
-#include "vtk_grid.hpp"
+#include "tetray/vtk_bridge.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

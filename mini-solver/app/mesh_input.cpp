@@ -1,6 +1,6 @@
 #include "mesh_input.hpp"
 
-#include <tetray/box_mesh.hpp>
+#include "tools/scenes/box_mesh.hpp"
 
 namespace minisolver {
 namespace {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <set>
 
-#include "../io/scratch_dir.hpp"
+#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
-#include "png_read.hpp"
+#include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray::testing {

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <limits>
 
-#include "../io/scratch_dir.hpp"
+#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
 #include "tetray/adaptor.hpp"
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/camera.hpp"
+#include "render/trace/camera.hpp"
 
 namespace tetray::testing {
 

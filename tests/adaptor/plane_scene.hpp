@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tetray/adaptor.hpp"
-#include "tetray/box_mesh.hpp"
+#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 

@@ -11,7 +11,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
-#include "../io/scratch_dir.hpp"
+#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
 #include "tetray/vtk_bridge.hpp"
 

@@ -1,0 +1,70 @@
+// The implicit 4D min/max BVH of seed 000 §5: every node bounds x, y, z and the scalar range
+// of the tets below it, so a subtree whose range misses every isovalue is culled before any
+// geometric test. Children of an inner node are stored next to each other; a leaf holds a
+// contiguous range of TetVolume::tets (the build reorders the tets into leaf order).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/volume/tet_volume.hpp"
+
+namespace tetray::render {
+
+struct Bounds4 {
+  float lo[4];  // x, y, z, f minimum
+  float hi[4];  // x, y, z, f maximum
+};
+
+struct BvhNode {
+  Bounds4 bounds;
+  std::uint32_t first;  // inner: index of the first child (the second is first + 1);
+                        // leaf: index of the first tet
+  std::uint32_t count;  // leaf: number of tets (>= 1); inner: 0
+
+  bool is_leaf() const { return count != 0; }
+};
+
+enum class BvhBuilder { bih, sah };
+
+struct BvhBuildOptions {
+  BvhBuilder builder = BvhBuilder::bih;
+  int leaf_size = 16;  // maximum tets per leaf
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
+  // Subtrees recorded at build time for parallel refit (seed 000 §6.2): each subtree's root
+  // sits among the top nodes, the rest of it in nodes [begin, end), children after parents.
+  struct Subtree {
+    std::uint32_t root, begin, end;
+  };
+  std::vector<Subtree> subtrees;
+  std::vector<std::uint32_t> top_nodes_bottom_up;  // inner nodes above the subtrees
+  // The distinct vertices of each leaf's tets, read by the refit (leaf_vertices.hpp): node i's
+  // are leaf_vertices[leaf_vertex_begin[i], leaf_vertex_begin[i + 1]), none for inner nodes.
+  std::vector<std::uint32_t> leaf_vertex_begin;
+  std::vector<std::uint32_t> leaf_vertices;
+  // SAH cost (traversal and tet cost 1, normalised by the root's surface area) at the last
+  // build and after the last refit: the quality measure of the rebuild policy.
+  double sah_cost_at_build = 0;
+  double sah_cost_now = 0;
+
+  bool empty() const { return nodes.empty(); }
+  std::size_t bytes() const {
+    return nodes.capacity() * sizeof(BvhNode) +
+           (leaf_vertex_begin.capacity() + leaf_vertices.capacity()) * sizeof(std::uint32_t);
+  }
+};
+
+// Builds the BVH over volume.tets and reorders volume.tets and volume.tet_ids into leaf order,
+// then fits the node bounds (refit_bvh). The tree and its layout depend only on the data, not
+// on the thread count. Parallel with oneTBB within the calling task arena.
+Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options);
+
+// Refits from the vertex store as it is: all 4D bounds (geometry = true) or only the scalar
+// ranges. Parallel over the recorded subtrees, then the top nodes; bitwise independent of the
+// thread count. Updates sah_cost_now when geometry changes.
+void refit_bvh(const TetVolume& volume, Bvh& bvh, bool geometry);
+
+}  // namespace tetray::render

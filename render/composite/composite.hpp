@@ -1,0 +1,36 @@
+// Sort-last depth compositing of RGBA+Z framebuffers across MPI ranks (the only module of
+// render/ that uses MPI). Binary swap for power-of-two rank counts, radix-k otherwise; ranks
+// exchange only their active region, run-length encoded. Ties in depth are broken by the hit
+// key (framebuffer.hpp, wins_over), so the result does not depend on the rank count.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+
+#include "render/core/framebuffer.hpp"
+
+namespace tetray::render {
+
+enum class CompositeAlgorithm { automatic, binary_swap, radix_k, gather };
+
+struct CompositeOptions {
+  CompositeAlgorithm algorithm = CompositeAlgorithm::automatic;
+  int root = 0;  // the rank that receives the final image
+};
+
+struct CompositeStats {
+  double seconds = 0;
+  std::uint64_t bytes_sent = 0;      // by this rank
+  std::uint64_t bytes_received = 0;  // by this rank
+  int rounds = 0;
+};
+
+// Composites `image` (this rank's part, same size on every rank) over `comm`. On return the
+// root's `image` holds the composited image; other ranks' images are unspecified. With one rank
+// it returns at once. Collective: every rank of `comm` must call it. Returns MPI_SUCCESS or the
+// first MPI error code.
+int composite(Framebuffer& image, MPI_Comm comm, const CompositeOptions& options,
+              CompositeStats* stats = nullptr);
+
+}  // namespace tetray::render

@@ -1,0 +1,36 @@
+// The wire format of the compositor: a piece of an image (a span of pixels) sent as its active
+// pixels only. Background runs are skipped (run-length encoded) and only the rows and columns
+// of the piece's active rectangle are scanned, so a rank whose part of the mesh covers little of
+// the screen sends, and reads, little.
+//
+// Layout, in 32-bit words: start, run count, pixel count, active rectangle (x0, y0, x1, y1),
+// then per run: pixels skipped since the previous run, pixel count, and per pixel r, g, b, a,
+// depth (float bits) and the hit key.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "render/composite/composite_region.hpp"
+#include "render/core/framebuffer.hpp"
+
+namespace tetray::render {
+
+using PieceMessage = std::vector<std::uint32_t>;
+
+inline constexpr std::size_t kPieceHeaderWords = 7;
+inline constexpr std::size_t kRunHeaderWords = 2;
+inline constexpr std::size_t kPixelWords = 6;
+
+// Encodes the active pixels of `span`; `hint` must hold every active pixel of the span (a
+// looser rectangle costs scanning time, never correctness).
+PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);
+
+// Composites an encoded piece into `image` by wins_over and returns the piece's active
+// rectangle, or nothing when the message is malformed or does not fit the image.
+std::optional<PixelRect> composite_piece(Framebuffer& image,
+                                         std::span<const std::uint32_t> message);
+
+}  // namespace tetray::render

@@ -1,0 +1,43 @@
+// Screen regions the compositor works with: spans of linear pixel indices (the pieces that
+// binary swap and radix-k split the image into) and rectangles bounding the active pixels
+// (what a rank actually has to send when its part of the mesh covers little of the screen).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "render/core/framebuffer.hpp"
+
+namespace tetray::render {
+
+// A pixel is active when it can win over the background; only active pixels are exchanged.
+inline bool is_active(float depth, std::uint32_t hit) {
+  return wins_over(depth, hit, std::numeric_limits<float>::infinity(), kNoHit);
+}
+
+// Linear pixel indices [begin, end), row-major (index = j * width + i).
+struct PixelSpan {
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+
+  std::uint32_t size() const { return end - begin; }
+};
+
+// Part `part` of `parts` near-equal consecutive parts of `span`.
+PixelSpan split_span(PixelSpan span, int parts, int part);
+
+// Half-open pixel rectangle [x0, x1) x [y0, y1); empty when it holds no pixel.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  bool operator==(const PixelRect&) const = default;
+};
+
+// The smallest rectangle holding both.
+PixelRect united(PixelRect a, PixelRect b);
+
+// The smallest rectangle holding every active pixel of `image`.
+PixelRect active_rect(const Framebuffer& image);
+
+}  // namespace tetray::render

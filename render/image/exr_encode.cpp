@@ -1,0 +1,96 @@
+// EXR encoding of DESIGN §3: R, G, B, A as half (linear, premultiplied: EXR's own convention)
+// and Z as float (view-axis depth, +inf for background), scanline, ZIP. Encoded into memory so
+// that the file itself is written atomically by write_file_atomically.
+#include <Imath/half.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfOutputFile.h>
+
+#include <cstring>
+#include <exception>
+
+#include "render/image/image_check.hpp"
+#include "render/image/image_write.hpp"
+
+namespace tetray::render {
+namespace {
+
+// An Imf::OStream into a growing byte vector (OpenEXR seeks back to patch the line offsets).
+class MemoryStream final : public Imf::OStream {
+ public:
+  explicit MemoryStream(std::vector<unsigned char>& bytes)
+      : Imf::OStream("<memory>"), bytes_(bytes) {}
+
+  void write(const char c[], int n) override {
+    const std::size_t count = static_cast<std::size_t>(n);
+    if (bytes_.size() < position_ + count) bytes_.resize(position_ + count);
+    std::memcpy(bytes_.data() + position_, c, count);
+    position_ += count;
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t pos) override { position_ = static_cast<std::size_t>(pos); }
+
+ private:
+  std::vector<unsigned char>& bytes_;
+  std::size_t position_ = 0;
+};
+
+Imf::Header exr_header(int width, int height) {
+  Imf::Header header(width, height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  // zlib's fastest level: about 30% less encoding time than OpenEXR's default (4) for files
+  // about 5% larger on the gyroid scene; images are written every few solver steps.
+  header.zipCompressionLevel() = 1;
+  for (const char* name : {"R", "G", "B", "A"}) {
+    header.channels().insert(name, Imf::Channel(Imf::HALF));
+  }
+  header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+  return header;
+}
+
+std::vector<Imath::half> to_half(std::span<const float> values) {
+  std::vector<Imath::half> halves(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) halves[k] = Imath::half(values[k]);
+  return halves;
+}
+
+void encode_into(const Framebuffer& image, std::vector<unsigned char>& bytes) {
+  std::vector<Imath::half> rgba = to_half(image.rgba);
+  constexpr std::size_t kPixelStride = 4 * sizeof(Imath::half);
+  const std::size_t row_stride = kPixelStride * static_cast<std::size_t>(image.width);
+
+  Imf::FrameBuffer slices;
+  const char* names[] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; ++c) {
+    char* base = reinterpret_cast<char*>(rgba.data() + c);
+    slices.insert(names[c], Imf::Slice(Imf::HALF, base, kPixelStride, row_stride));
+  }
+  // Slice takes a mutable pointer because input files share it; OutputFile only reads.
+  char* depth = reinterpret_cast<char*>(const_cast<float*>(image.depth.data()));
+  slices.insert("Z", Imf::Slice(Imf::FLOAT, depth, sizeof(float),
+                                sizeof(float) * static_cast<std::size_t>(image.width)));
+
+  MemoryStream stream(bytes);
+  Imf::OutputFile file(stream, exr_header(image.width, image.height));
+  file.setFrameBuffer(slices);
+  file.writePixels(image.height);
+}
+
+}  // namespace
+
+EncodedImage encode_exr(const Framebuffer& image) {
+  EncodedImage encoded;
+  encoded.error = framebuffer_problem(image);
+  if (!encoded.ok()) return encoded;
+  try {
+    encode_into(image, encoded.bytes);
+  } catch (const std::exception& e) {
+    encoded.bytes.clear();
+    encoded.error = std::string("EXR encoding failed: ") + e.what();
+  }
+  return encoded;
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,60 @@
+// The pinhole camera of DESIGN.md §3. Every part of tetray (tracer, reference intersector,
+// benchmark references, tests) generates its rays here, so all of them agree on a pixel's ray.
+#pragma once
+
+#include <vector>
+
+#include "render/core/vec.hpp"
+
+namespace tetray::render {
+
+struct Camera {
+  Vec3d eye{0, 0, 5};
+  Vec3d look_at{0, 0, 0};
+  Vec3d up{0, 1, 0};
+  double fov_deg = 40.0;
+  int width = 512;
+  int height = 512;
+};
+
+// The orthonormal frame and image-plane scale derived from a Camera.
+struct CameraFrame {
+  Vec3d eye;
+  Vec3d forward, right, up;  // right = forward x up, up = right x forward
+  double scale_x = 0;        // tan(fov/2) * W/H
+  double scale_y = 0;        // tan(fov/2)
+
+  // Unnormalized direction through continuous image coordinates (px, py) in pixels, where the
+  // center of pixel (i, j) is (i + 0.5, j + 0.5).
+  Vec3d direction_at(double px, double py, int width, int height) const;
+};
+
+CameraFrame make_frame(const Camera& camera);
+
+// Normalized ray direction through the center of pixel (i, j), in double precision.
+Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j);
+
+// The same directions for a whole frame, from a term per column and a term per row, so a
+// packet's set-up costs an add and a normalization per ray. normalize(column + row) is bitwise
+// equal to pixel_direction(frame, camera, i, j). The column terms are stored x, y, z apart (a
+// packet's row is then converted in SIMD) and repeated past the last column for a packet's
+// width, so a packet over the image edge repeats the edge column's rays.
+struct PixelDirections {
+  static constexpr int kPastEdge = 32;               // columns repeated past the last one
+  std::vector<double> column_x, column_y, column_z;  // forward + ndc_x(i) right
+  std::vector<Vec3d> row;                            // ndc_y(j) up
+
+  PixelDirections(const CameraFrame& frame, const Camera& camera);
+};
+
+// Depth of DESIGN §3: distance along the view axis.
+inline double view_depth(const CameraFrame& frame, Vec3d hit) {
+  return dot(hit - frame.eye, frame.forward);
+}
+
+// A camera that looks at the box [lo, hi] from direction `from_direction` (pointing from the
+// target towards the eye) so that the whole box fits the vertical and horizontal field of view.
+Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,
+                  int height);
+
+}  // namespace tetray::render

@@ -1,0 +1,14 @@
+// Default colors of isosurfaces that have none of their own (tetray-render, config scenes
+// without `colors:`): kMaxIsovalues colors that stay distinguishable next to each other.
+#pragma once
+
+#include <cstddef>
+
+#include "render/trace/trace.hpp"
+
+namespace tetray::render {
+
+// Linear RGB of the k-th isosurface; k wraps around after kMaxIsovalues.
+Rgb default_iso_color(std::size_t k);
+
+}  // namespace tetray::render

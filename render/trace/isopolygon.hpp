@@ -1,0 +1,98 @@
+// Isopolygons (seed 000 §4.1): the plane of a linear tet's isosurface bounded by its edges,
+// found by the 16-case marching-tetrahedra table. A vertex with f >= iso counts as above
+// (DESIGN §3), which makes every case well defined, values equal to the isovalue included.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "render/core/simd.hpp"
+#include "render/volume/tet_volume.hpp"
+#include "render/core/vec.hpp"
+
+namespace tetray::render {
+
+struct IsoCase {
+  // ends[e][k]: the tet vertex at end e of edge k, the edges in order around the polygon (a
+  // triangle's first edge again as the fourth); as 32-bit lanes, to permute the corners with.
+  alignas(16) std::int32_t ends[2][4];
+  std::int32_t vertex_count;  // 0, 3 or 4
+};
+
+// The table for case = sum of (f_i >= iso) << i.
+const std::array<IsoCase, 16>& iso_cases();
+
+// A tet's four vertices as components: lane k of column c is component c (x, y, z, f) of
+// vertex k.
+struct TetCorners {
+  simd::Float4 column[4];
+};
+
+inline TetCorners load_corners(const TetVolume& volume, const Tet& tet) {
+  const simd::Float4 rows[4] = {
+      simd::load_float4(volume.vertices[tet.v[0]]), simd::load_float4(volume.vertices[tet.v[1]]),
+      simd::load_float4(volume.vertices[tet.v[2]]), simd::load_float4(volume.vertices[tet.v[3]])};
+  TetCorners corners;
+  simd::transpose4(rows, corners.column);
+  return corners;
+}
+
+// The case of a tet for an isovalue: 0 or 15 when the tet holds none of its surface.
+inline int iso_case(const TetCorners& corners, float iso) {
+  return simd::bits4(corners.column[3] >= simd::Float4(iso));
+}
+
+// Every polygon has four corners: a triangle repeats its first as the fourth (the table lists
+// its first edge twice), so the kernels run one branch-free path over four lanes; the repeated
+// corner adds an edge of no length, which takes no part in the inside test
+// (isopolygon_intersect.hpp).
+struct Isopolygon {
+  int vertex_count = 0;  // 3 or 4 distinct corners; 0: the tet holds no isosurface
+  simd::Float4 xyz[3];   // x, y, z of the corners (corner k in lane k), relative to the
+                         // volume's local origin
+};
+
+// The points where the isosurface crosses the four edges (a_k, b_k), one per lane. The two ends
+// of an edge are ordered by position, then value (not by index), so every tet sharing the edge,
+// on any rank, computes bitwise the same point: neighbouring isopolygons meet exactly and the
+// surface has no cracks. An end whose value equals the isovalue is returned exactly, so
+// polygons meeting at a mesh vertex through different edges meet there too; and the point is
+// clamped to the edge's bounding box, which rounding could otherwise leave by an ulp (the BVH
+// bounds the vertices, not the polygons). Selects and compares only: the order of random edge
+// ends is unpredictable, and a branch on it cost more than the arithmetic.
+inline void edge_crossings(const simd::Float4 (&a)[4], const simd::Float4 (&b)[4], float iso,
+                           simd::Float4 (&xyz)[3]) {
+  using simd::Float4;
+  const simd::Mask4 a_first = simd::lexicographic_less<4>(a, b);
+  const Float4 pf = xsimd::select(a_first, a[3], b[3]), qf = xsimd::select(a_first, b[3], a[3]);
+  const Float4 value(iso);
+  // 0 / 0 only where pf == qf; one end equals the isovalue there and is chosen below.
+  const Float4 s = (value - pf) / (qf - pf);
+  for (int c = 0; c < 3; ++c) {
+    const Float4 from = xsimd::select(a_first, a[c], b[c]), to = xsimd::select(a_first, b[c], a[c]);
+    const Float4 along = from + s * (to - from);
+    // std::clamp(along, std::min(from, to), std::max(from, to)), with its exact comparisons.
+    const Float4 lo = xsimd::select(to < from, to, from), hi = xsimd::select(from < to, to, from);
+    const Float4 above = xsimd::select(along < lo, lo, along);
+    const Float4 crossing = xsimd::select(hi < above, hi, above);
+    xyz[c] = xsimd::select(pf == value, from, xsimd::select(qf == value, to, crossing));
+  }
+}
+
+// The isopolygon of a tet for an isovalue and its case (iso_case; 0 and 15 give none). The
+// edge ends are the corners permuted by the case's lanes.
+inline Isopolygon extract_isopolygon(const TetCorners& corners, int case_index, float iso) {
+  const IsoCase& entry = iso_cases()[case_index];
+  Isopolygon poly;
+  poly.vertex_count = entry.vertex_count;
+  simd::Float4 a[4], b[4];
+  for (int c = 0; c < 4; ++c) {
+    a[c] = simd::permute(corners.column[c], entry.ends[0]);
+    b[c] = simd::permute(corners.column[c], entry.ends[1]);
+  }
+  edge_crossings(a, b, iso, poly.xyz);
+  return poly;
+}
+
+}  // namespace tetray::render

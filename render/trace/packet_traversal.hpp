@@ -1,0 +1,170 @@
+// Packet traversal of the implicit BVH (seed 000 §5.2), written once and templated on the
+// packet size and on what a leaf does (DESIGN §7), in the order the seed gives:
+//   I   implicit culling: a node whose scalar range straddles no isovalue is skipped, and a node
+//       with one active child descends into it without any geometric test;
+//   II  speculative first-active descent: if the first active ray hits the node, descend;
+//   III else an interval-arithmetic frustum test rejects nodes the whole packet misses;
+//   IV  else rays are tested in order until one hits; those before it become inactive for the
+//       subtree (first-active tracking).
+// Leaves get the same geometric test, then the leaf operation runs from the first active ray.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "render/bvh/bvh.hpp"
+#include "render/trace/iso_set.hpp"
+#include "render/trace/isopolygon.hpp"
+#include "render/trace/ray_packet.hpp"
+#include "render/trace/trace.hpp"
+
+namespace tetray::render {
+
+// Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance grows by
+// 1 + 2 gamma(3), so rounding never lets a ray miss a box around a surface it hits.
+inline constexpr float kRobustFar = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+template <int S, bool kStats>
+class PacketTraversal {
+ public:
+  using Packet = RayPacket<S>;
+  using F = typename Packet::Lanes::F;
+  static constexpr int W = Packet::kLaneWidth;
+
+  PacketTraversal(const Bvh& bvh, const IsoSet& isos, Packet& packet, TraceStats& stats)
+      : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats) {}
+
+  // Runs the traversal; leaf(node, first_active) intersects a leaf's tets.
+  template <typename LeafOp>
+  void run(LeafOp&& leaf) {
+    if (bvh_.empty() || !range_active(bvh_.nodes[0])) return;
+    struct Entry {
+      std::uint32_t node;
+      int first_active;
+    };
+    Entry stack[kStackSize];
+    int top = 0;
+    std::uint32_t node = 0;
+    int active = geometric_test(bvh_.nodes[0], 0);
+    for (;;) {
+      if (active >= 0) {
+        descend(node, active, [&](std::uint32_t far, int fa) { stack[top++] = {far, fa}; });
+        if (active >= 0) leaf(bvh_.nodes[node], active);
+      }
+      if (top == 0) return;
+      --top;
+      node = stack[top].node;
+      active = geometric_test(bvh_.nodes[node], stack[top].first_active);
+    }
+  }
+
+ private:
+  static constexpr int kStackSize = 128;  // the builders bound the depth well below this
+
+  // Interval arithmetic over the packet's inverse directions: every ray's entry distance is at
+  // least `enter` and its exit at most `leave`; rounding is monotonic, so the bounds hold for
+  // the per-ray float computations too.
+  bool frustum_misses(const Bounds4& b) const {
+    float enter = 0, leave = std::numeric_limits<float>::infinity();
+    const float e[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
+    for (int a = 0; a < 3; ++a) {
+      if (packet_.inv_straddles[a]) continue;
+      const bool positive = packet_.inv_lo[a] >= 0;
+      const float near_plane = (positive ? b.lo[a] : b.hi[a]) - e[a];
+      const float far_plane = (positive ? b.hi[a] : b.lo[a]) - e[a];
+      enter =
+          std::max(enter, std::min(near_plane * packet_.inv_lo[a], near_plane * packet_.inv_hi[a]));
+      leave =
+          std::min(leave, std::max(far_plane * packet_.inv_lo[a], far_plane * packet_.inv_hi[a]));
+    }
+    return enter > leave * kRobustFar || enter > packet_.tmax_bound;
+  }
+
+  bool range_active(const BvhNode& n) {
+    if constexpr (kStats) ++stats_.isorange_tests;
+    return isos_.straddled_by(n.bounds.lo[3], n.bounds.hi[3]);
+  }
+
+  // Walks down from `node` to a leaf (updating node and active), pushing far children of
+  // bifurcations; active becomes -1 when the walk ends without a leaf to intersect.
+  template <typename Push>
+  void descend(std::uint32_t& node, int& active, Push&& push) {
+    while (!bvh_.nodes[node].is_leaf()) {
+      const std::uint32_t first = bvh_.nodes[node].first;
+      const bool a0 = range_active(bvh_.nodes[first]), a1 = range_active(bvh_.nodes[first + 1]);
+      if (!a0 && !a1) {
+        active = -1;
+        return;
+      }
+      if (a0 != a1) {  // speculative: the single active child needs no geometric test
+        node = a0 ? first : first + 1;
+        continue;
+      }
+      const bool left_first = near_child_is_first(first);
+      const std::uint32_t far = left_first ? first + 1 : first;
+      node = left_first ? first : first + 1;
+      prefetch_children(far);
+      prefetch_children(node);
+      push(far, active);
+      active = geometric_test(bvh_.nodes[node], active);
+      if (active < 0) return;
+    }
+  }
+
+  // Asks for the cache lines of an inner node's children ahead of use: node visits wait on
+  // memory, and the geometric test of the near child, or the whole near subtree for the far
+  // one, runs meanwhile. (Asking for a leaf's tets the same way gained nothing.)
+  void prefetch_children(std::uint32_t node) const {
+    const BvhNode& n = bvh_.nodes[node];
+    if (n.is_leaf()) return;
+    __builtin_prefetch(&bvh_.nodes[n.first]);
+    __builtin_prefetch(&bvh_.nodes[n.first + 1].count);
+  }
+
+  // Front-to-back order along the packet's mean direction.
+  bool near_child_is_first(std::uint32_t first) const {
+    const Bounds4& a = bvh_.nodes[first].bounds;
+    const Bounds4& b = bvh_.nodes[first + 1].bounds;
+    const int mid = Packet::kRays / 2;
+    const float d[3] = {packet_.dx[mid], packet_.dy[mid], packet_.dz[mid]};
+    float along = 0;
+    for (int k = 0; k < 3; ++k) along += d[k] * ((b.lo[k] + b.hi[k]) - (a.lo[k] + a.hi[k]));
+    return along >= 0;
+  }
+
+  // Index of the first ray at or after `first_active` that hits the node's box, or -1.
+  int geometric_test(const BvhNode& n, int first_active) {
+    if constexpr (kStats) ++stats_.packet_box_tests;
+    if (ray_hits<float>(n.bounds, first_active)) return first_active;
+    if (frustum_misses(n.bounds)) return -1;
+    for (int base = (first_active + 1) / W * W; base < Packet::kRays; base += W) {
+      std::uint64_t hits = simd::bits(ray_hits<F>(n.bounds, base));
+      hits &= ~std::uint64_t{0} << std::max(0, first_active + 1 - base);
+      if (hits) return base + std::countr_zero(hits);
+    }
+    return -1;
+  }
+
+  // Slab test of the W (or one) rays starting at r.
+  template <typename V>
+  auto ray_hits(const Bounds4& b, int r) {
+    if constexpr (kStats) stats_.ray_box_tests += sizeof(V) / sizeof(float);
+    const Vec3f e = packet_.eye;
+    const V ix = simd::load(packet_.ix + r, V{}), iy = simd::load(packet_.iy + r, V{}),
+            iz = simd::load(packet_.iz + r, V{});
+    const V tx0 = (b.lo[0] - e.x) * ix, tx1 = (b.hi[0] - e.x) * ix;
+    const V ty0 = (b.lo[1] - e.y) * iy, ty1 = (b.hi[1] - e.y) * iy;
+    const V tz0 = (b.lo[2] - e.z) * iz, tz1 = (b.hi[2] - e.z) * iz;
+    using simd::vmax, simd::vmin;
+    const V near = vmax(vmax(vmin(tx0, tx1), vmin(ty0, ty1)), vmax(vmin(tz0, tz1), V(0.0f)));
+    const V far = vmin(vmin(vmax(tx0, tx1), vmax(ty0, ty1)), vmax(tz0, tz1)) * kRobustFar;
+    return near <= vmin(far, simd::load(packet_.tmax + r, V{}));
+  }
+
+  const Bvh& bvh_;
+  const IsoSet& isos_;
+  Packet& packet_;
+  TraceStats& stats_;
+};
+
+}  // namespace tetray::render

@@ -1,0 +1,65 @@
+// A packet of S x S primary rays sharing the eye (seed 000 §3: 16 x 16 by default), stored as
+// structure of arrays for the SIMD kernels, with the interval bounds of its directions (the
+// node test of seed 000 §5.2 III) and its corner-ray frustum (§4.3, packet_frustum.hpp: the tet
+// and isopolygon tests). Rays of a packet that fall off the image repeat a pixel at the edge (so
+// the frustum stays tight) and start with tmax = -inf, so they hit nothing.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "render/trace/camera.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/packet_frustum.hpp"
+#include "render/core/simd.hpp"
+
+namespace tetray::render {
+
+template <int S>
+struct alignas(64) RayPacket {
+  static constexpr int kRays = S * S;
+  using Lanes = simd::LaneTypes<kRays>;
+  static constexpr int kLaneWidth = Lanes::width;
+
+  alignas(64) float dx[kRays], dy[kRays], dz[kRays];  // normalized directions
+  alignas(64) float ix[kRays], iy[kRays], iz[kRays];  // their inverses
+  alignas(64) float tmax[kRays];                      // nearest hit so far
+  alignas(64) std::uint32_t key[kRays];               // tie key of that hit
+  alignas(64) std::int32_t tet[kRays];                // volume.tets index of that hit, -1: none
+  alignas(64) std::int32_t iso[kRays];                // isovalue index of that hit
+  alignas(64) float nx[kRays], ny[kRays], nz[kRays];  // unnormalized normal at that hit
+
+  Vec3f eye;                   // relative to the volume's origin
+  PacketFrustum frustum;       // of the rays in the image
+  float inv_lo[3], inv_hi[3];  // interval of the inverse directions, per axis
+  bool inv_straddles[3];       // the directions have both signs on this axis
+  float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
+  int rays_without_hit = 0;    // rays in the image still without a hit: while any is left,
+                               // tmax_bound stays infinite and needs no update
+  // Image rows of points (relative to the eye) in packet row units:
+  // row = row_center - row_scale * dot(p, up) / dot(p, forward).
+  Vec3f forward, up;
+  float row_center = 0, row_scale = 0;
+};
+
+// The frustum of the tile of S x S pixels whose top-left pixel is (x0, y0) (its part in the
+// image); `magnitude` bounds the coordinates (relative to the volume's origin) of the eye and
+// every vertex (make_packet_frustum).
+template <int S>
+PacketFrustum tile_frustum(const Camera& camera, const CameraFrame& frame, float magnitude, int x0,
+                           int y0) {
+  return make_packet_frustum(camera, frame, x0, y0, std::min(x0 + S, camera.width) - 1,
+                             std::min(y0 + S, camera.height) - 1, magnitude);
+}
+
+// Fills `packet` with the rays of that tile, whose frustum is given.
+template <int S>
+void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
+                  const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
+                  int x0, int y0);
+
+// The largest tmax of the packet's rays (computed once every ray in the image has a hit).
+template <int S>
+void update_tmax_bound(RayPacket<S>& packet);
+
+}  // namespace tetray::render

@@ -1,0 +1,54 @@
+// Shading of primary hits (DESIGN §3): two-sided Lambert with a headlight, the color per
+// isovalue or, with color_by, a colormap of a second field interpolated at the hit.
+#pragma once
+
+#include "render/trace/camera.hpp"
+#include "render/trace/trace.hpp"
+
+namespace tetray::render {
+
+struct ShadeContext {
+  const TetVolume& volume;
+  const CameraFrame& frame;
+  std::span<const IsoSurface> surfaces;
+  const int* surface_of_sorted;  // isovalue index (sorted order) -> surfaces index
+  const TraceOptions& options;
+};
+
+// The hits of a packet's rays, structure of arrays: normalized direction d, isopolygon normal n
+// (any length), distance t.
+struct RayHits {
+  const float *dx, *dy, *dz;
+  const float *nx, *ny, *nz;
+  const float* t;
+  int count;
+};
+
+// Headlight factor and view depth of every ray of `hits` at once: the per-pixel square roots,
+// divisions and double-precision depths are the costly part of shading, and run vectorized.
+// Values of rays that hit nothing are meaningless.
+void light_and_depth(const ShadeContext& ctx, const RayHits& hits, float* light, float* depth);
+
+// The color field's colormap value at the hit point eye + t d of a ray in volume.tets[tet].
+void field_color(const ShadeContext& ctx, int tet, Vec3f d, float t, float rgb[3]);
+
+// The color of a ray with normalized direction `d` that hit isovalue `iso` (sorted index) of
+// volume.tets[tet] at distance t, lit by `light`: the surface's color, or with color_by the
+// field's; only the latter needs the hit point and reads the tet (a random access into the
+// tets per pixel that a plain surface does not need).
+inline void shade_color(const ShadeContext& ctx, Vec3f d, float t, int tet, int iso, float light,
+                        float rgba[4]) {
+  float rgb[3];
+  if (ctx.options.color_by.colormap && !ctx.volume.color_field.empty()) {
+    field_color(ctx, tet, d, t, rgb);
+  } else {
+    const Rgb& c = ctx.surfaces[ctx.surface_of_sorted[iso]].color;
+    rgb[0] = c.r;
+    rgb[1] = c.g;
+    rgb[2] = c.b;
+  }
+  for (int k = 0; k < 3; ++k) rgba[k] = rgb[k] * light;
+  rgba[3] = 1.0f;
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,79 @@
+// Ray tracing isosurfaces directly on the tets (seed 000 §3-5): packets of rays traverse the
+// implicit BVH with iso-range culling, first-active speculative descent and interval-arithmetic
+// frustum culling; leaves intersect on-the-fly isopolygons.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "render/bvh/bvh.hpp"
+#include "render/trace/camera.hpp"
+#include "render/trace/colormap.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/iso_set.hpp"
+#include "render/volume/tet_volume.hpp"
+
+namespace tetray::render {
+
+struct Rgb {
+  float r = 1, g = 1, b = 1;
+};
+
+struct IsoSurface {
+  float value = 0;
+  Rgb color{};
+};
+
+// Rays traced together (seed 000 §3): single rays, or square packets. Every size gives bitwise
+// the same image; larger packets share more of the traversal and of each isopolygon's set-up.
+enum class PacketSize { single, p8x8, p16x16, p32x32 };
+inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
+                                            PacketSize::p16x16, PacketSize::p32x32};
+
+// "1", "8x8", "16x16", "32x32".
+const char* to_string(PacketSize packet);
+
+// Seed 000 Table 4 counters, per frame.
+struct TraceStats {
+  std::uint64_t rays = 0;
+  std::uint64_t hits = 0;
+  std::uint64_t packet_box_tests = 0;  // packet-node visits that needed a geometric test
+  std::uint64_t ray_box_tests = 0;     // individual ray-box tests
+  std::uint64_t isorange_tests = 0;    // node and tet iso-range tests
+  std::uint64_t isopolygon_extractions = 0;
+  std::uint64_t ray_isopolygon_tests = 0;        // individual ray-isopolygon tests
+  std::uint64_t frustum_culled_isopolygons = 0;  // culled for the whole packet: outside its
+                                                 // frustum, or no row covered
+
+  TraceStats& operator+=(const TraceStats& o);
+};
+
+// Coloring by a second per-vertex field (TetVolume::color_field) through a colormap instead
+// of the per-isovalue colors. Without it no field is gathered at the hits.
+struct ColorBy {
+  const Colormap* colormap = nullptr;  // null: use IsoSurface::color
+  float range_lo = 0, range_hi = 1;
+};
+
+struct TraceOptions {
+  PacketSize packet = PacketSize::p32x32;
+  bool collect_stats = false;  // off: the hot path pays nothing for counting
+  ColorBy color_by{};
+  float ambient = 0.15f;  // Lambert headlight: color * (ambient + (1 - ambient) |cos|)
+};
+
+// Traces every pixel of `camera` against `volume`/`bvh` for up to kMaxIsovalues isosurfaces
+// (nearest hit wins) and shades with a two-sided Lambert headlight. Runs in parallel over
+// packets in the calling oneTBB arena. `stats` may be null.
+Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                  std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                  TraceStats* stats = nullptr);
+
+// The same into `image`, whose storage is reused when it already has the camera's size (every
+// pixel is written, so no clearing pass): the form for a time loop.
+void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                TraceStats* stats = nullptr);
+
+}  // namespace tetray::render

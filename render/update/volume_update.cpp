@@ -1,0 +1,169 @@
+#include "render/update/volume_update.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render/core/stopwatch.hpp"
+#include "render/volume/point_read.hpp"
+#include "render/core/value_bounds.hpp"
+
+namespace tetray::render {
+namespace {
+
+Vec3d center_of_points(const PointSource& points) {
+  const BoundingBox box = with_points(points, [&](const auto* xyz, const auto* disp) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, points.count), BoundingBox{},
+        [&](const auto& block, BoundingBox b) {
+          for (std::size_t i = block.begin(); i != block.end(); ++i) {
+            double p[3];
+            point_position(xyz, disp, i, p);
+            b.include(Vec3d{p[0], p[1], p[2]});
+          }
+          return b;
+        },
+        [](BoundingBox a, const BoundingBox& b) {
+          a.merge(b);
+          return a;
+        });
+  });
+  if (box.empty()) return {};
+  return 0.5 * (box.lo() + box.hi());
+}
+
+// Calls visit(p, k) for each of the caller's points p and the vertex k it became, in the
+// caller's order and in parallel: the caller's arrays are read front to back once and the
+// store written scattered (within its leaf-local order), which is cheaper than gathering.
+template <typename Visit>
+void for_each_point_vertex(const TetVolume& volume, std::size_t point_count, Visit&& visit) {
+  const bool renumbered = !volume.point_vertex.empty();
+  // Never past the caller's arrays, even when a step brings fewer points than the map knows:
+  // the vertices of points cut off keep their values (the adaptor, which checks the tets
+  // against the point count, never lets a used point be cut off).
+  const std::size_t count =
+      std::min(point_count, renumbered ? volume.point_vertex.size() : volume.vertices.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& block) {
+    for (std::size_t p = block.begin(); p != block.end(); ++p) {
+      const std::size_t k = renumbered ? volume.point_vertex[p] : p;
+      if (k != kNoVertex) visit(p, k);
+    }
+  });
+}
+
+// Converts the changed arrays into the vertex store in one pass.
+void ingest(TetVolume& volume, const PointSource& points, const FieldSource& field, bool geometry,
+            bool values) {
+  if (volume.point_vertex.empty()) volume.vertices.resize(points.count);
+  const Vec3d o = volume.origin;
+  auto convert = [&](const auto* xyz, const auto* disp, const auto* f) {
+    for_each_point_vertex(volume, points.count, [&](std::size_t p, std::size_t k) {
+      Vertex& v = volume.vertices[k];
+      const float value = values ? (f ? static_cast<float>(f[p]) : 0.0f) : v.f;
+      if (geometry) {
+        double xyz_p[3];
+        point_position(xyz, disp, p, xyz_p);
+        // The whole vertex in one 16-byte store: a scalar store per component into the vertex
+        // store made the ingest a tenth slower.
+        v = {static_cast<float>(xyz_p[0] - o.x), static_cast<float>(xyz_p[1] - o.y),
+             static_cast<float>(xyz_p[2] - o.z), value};
+      } else if (values) {
+        v.f = value;
+      }
+    });
+  };
+  with_points(points, [&](const auto* xyz, const auto* disp) {
+    if (!field.values) return convert(xyz, disp, static_cast<const float*>(nullptr));
+    with_scalar(field.kind, [&](auto tag) {
+      convert(xyz, disp, static_cast<const decltype(tag)*>(field.values));
+    });
+  });
+}
+
+UpdateResult rebuild(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
+  const Stopwatch watch;
+  bvh = build_bvh(volume, policy.build);
+  UpdateResult result;
+  result.kind = BvhUpdateKind::rebuild;
+  result.rebuild_ms = watch.ms();
+  return result;
+}
+
+}  // namespace
+
+const char* to_string(BvhUpdateKind kind) {
+  switch (kind) {
+    case BvhUpdateKind::none:
+      return "none";
+    case BvhUpdateKind::field_only:
+      return "field_refit";
+    case BvhUpdateKind::refit:
+      return "refit";
+    case BvhUpdateKind::rebuild:
+      return "rebuild";
+  }
+  return "unknown";
+}
+
+UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64_t> tets,
+                         std::span<const std::uint8_t> keep, std::span<const std::uint32_t> ids,
+                         const PointSource& points, const FieldSource& field,
+                         const UpdatePolicy& policy, const Vec3d* origin) {
+  const Stopwatch watch;
+  const std::size_t count = tets.size() / 4;
+  volume.tets.clear();
+  volume.tet_ids.clear();
+  volume.tets.reserve(count);
+  volume.tet_ids.reserve(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    if (!keep.empty() && !keep[t]) continue;
+    volume.tets.push_back(
+        {{static_cast<std::int32_t>(tets[4 * t]), static_cast<std::int32_t>(tets[4 * t + 1]),
+          static_cast<std::int32_t>(tets[4 * t + 2]), static_cast<std::int32_t>(tets[4 * t + 3])}});
+    volume.tet_ids.push_back(ids.empty() ? static_cast<std::uint32_t>(t) : ids[t]);
+  }
+  volume.origin = origin ? *origin : center_of_points(points);
+  volume.point_vertex.clear();
+  volume.color_field.clear();
+  ingest(volume, points, field, true, true);
+  const double ingest_ms = watch.ms();
+  UpdateResult result = rebuild(volume, bvh, policy);
+  result.ingest_refit_ms = ingest_ms;
+  return result;
+}
+
+UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& points,
+                           const FieldSource& field, StepChanges changes,
+                           const UpdatePolicy& policy) {
+  UpdateResult result;
+  if (!changes.geometry && !changes.field) return result;
+  const Stopwatch watch;
+  ingest(volume, points, field, changes.geometry, changes.field);
+  refit_bvh(volume, bvh, changes.geometry);
+  result.ingest_refit_ms = watch.ms();
+  result.kind = changes.geometry ? BvhUpdateKind::refit : BvhUpdateKind::field_only;
+  if (bvh.sah_cost_at_build > 0) result.quality_ratio = bvh.sah_cost_now / bvh.sah_cost_at_build;
+  if (result.quality_ratio > policy.rebuild_ratio) {
+    const double refit_ms = result.ingest_refit_ms;
+    const double ratio = result.quality_ratio;
+    result = rebuild(volume, bvh, policy);
+    result.ingest_refit_ms = refit_ms;
+    result.quality_ratio = ratio;
+  }
+  return result;
+}
+
+void load_color_field(TetVolume& volume, const FieldSource& field) {
+  volume.color_field.resize(volume.vertices.size());
+  with_scalar(field.kind, [&](auto tag) {
+    const auto* values = static_cast<const decltype(tag)*>(field.values);
+    for_each_point_vertex(volume, field.count, [&](std::size_t p, std::size_t k) {
+      volume.color_field[k] = static_cast<float>(values[p]);
+    });
+  });
+}
+
+}  // namespace tetray::render

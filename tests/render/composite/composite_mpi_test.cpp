@@ -1,0 +1,183 @@
+// The compositor against the brute-force reference (gather everything, nearest per pixel by
+// wins_over), for every algorithm, at whatever rank count mpirun gives (ctest runs 1, 2, 3, 4,
+// 5 and 8).
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <string>
+
+#include "composite_test_images.hpp"
+#include "render/composite/composite.hpp"
+#include "render/composite/composite_codec.hpp"
+#include "render/composite/composite_plan.hpp"
+
+namespace tetray::render {
+namespace {
+
+using testing::brute_force_composite;
+using testing::Coverage;
+using testing::random_coverage;
+using testing::random_image;
+using testing::World;
+using testing::world;
+
+constexpr std::uint64_t kHeaderBytes = kPieceHeaderWords * sizeof(std::uint32_t);
+constexpr std::uint64_t kRunBytes = kRunHeaderWords * sizeof(std::uint32_t);
+constexpr std::uint64_t kPixelBytes = kPixelWords * sizeof(std::uint32_t);
+
+std::size_t count_differences(const Framebuffer& a, const Framebuffer& b) {
+  std::size_t differences = 0;
+  for (std::size_t p = 0; p < a.pixel_count(); ++p) {
+    bool same = a.depth[p] == b.depth[p] && a.hit[p] == b.hit[p];
+    for (int c = 0; c < 4; ++c) same = same && a.rgba[4 * p + c] == b.rgba[4 * p + c];
+    differences += same ? 0 : 1;
+  }
+  return differences;
+}
+
+// Messages a rank sends at most: one per other group member per round, and the final piece.
+std::uint64_t max_messages_sent(const CompositePlan& plan) {
+  return std::accumulate(plan.radices.begin(), plan.radices.end(), std::uint64_t{1},
+                         [](std::uint64_t sum, int k) { return sum + k - 1; });
+}
+
+class CompositeMpi : public ::testing::TestWithParam<CompositeAlgorithm> {
+ protected:
+  // Composites `image` on `root` and checks it against the reference there.
+  CompositeStats composite_and_check(Framebuffer image, int root, const std::string& what) {
+    const Framebuffer expected = brute_force_composite(image, MPI_COMM_WORLD, root);
+    CompositeStats stats;
+    EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), root}, &stats), MPI_SUCCESS) << what;
+    if (world().rank == root) {
+      EXPECT_EQ(count_differences(image, expected), 0u) << what;
+    }
+    return stats;
+  }
+};
+
+TEST_P(CompositeMpi, MatchesBruteForceOnRandomImages) {
+  const World w = world();
+  const int sizes[][2] = {{64, 48}, {257, 131}};
+  for (const auto& size : sizes) {
+    for (std::uint32_t seed = 0; seed < 4; ++seed) {
+      const Framebuffer image =
+          random_image(size[0], size[1], seed, w.rank, w.size, random_coverage(seed, w.rank));
+      composite_and_check(image, static_cast<int>(seed) % w.size,
+                          std::to_string(size[0]) + "x" + std::to_string(size[1]) + " seed " +
+                              std::to_string(seed));
+    }
+  }
+}
+
+TEST_P(CompositeMpi, AllRanksEmptyGiveTheBackground) {
+  const World w = world();
+  Framebuffer image(64, 48);
+  CompositeStats stats;
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0}, &stats), MPI_SUCCESS);
+  if (w.rank == 0) {
+    EXPECT_EQ(count_differences(image, Framebuffer(64, 48)), 0u);
+  }
+  // Empty pieces cost their headers only.
+  EXPECT_EQ(stats.bytes_sent % kHeaderBytes, 0u);
+  EXPECT_LE(stats.bytes_sent, kHeaderBytes * max_messages_sent(make_plan(w.size, GetParam())));
+}
+
+TEST_P(CompositeMpi, OneEmptyRankAmongFullOnes) {
+  const World w = world();
+  for (int empty_rank = 0; empty_rank < w.size; empty_rank += 2) {
+    const Coverage coverage = w.rank == empty_rank ? Coverage::empty : Coverage::full;
+    composite_and_check(random_image(257, 131, 11, w.rank, w.size, coverage), 0,
+                        "empty rank " + std::to_string(empty_rank));
+  }
+}
+
+TEST_P(CompositeMpi, VeryUnequalWork) {
+  // One rank covers the whole screen; every other rank hits a single pixel.
+  const World w = world();
+  const int busy_rank = w.size - 1;
+  Framebuffer image = random_image(257, 131, 5, w.rank, w.size,
+                                   w.rank == busy_rank ? Coverage::full : Coverage::empty);
+  if (w.rank != busy_rank) {
+    const std::size_t p = image.index(17 * w.rank % 257, 13 * w.rank % 131);
+    image.depth[p] = 0.5f;
+    image.hit[p] = static_cast<std::uint32_t>(w.rank);
+    image.rgba[4 * p] = 1.0f;
+  }
+  composite_and_check(image, 0, "unequal work");
+}
+
+TEST_P(CompositeMpi, DenseImagesSendEveryPixelAtMostOnce) {
+  const World w = world();
+  const Framebuffer image = random_image(257, 131, 3, w.rank, w.size, Coverage::full);
+  const CompositeStats stats = composite_and_check(image, 0, "dense");
+  const std::uint64_t pixels = image.pixel_count();
+  const std::uint64_t messages = max_messages_sent(make_plan(w.size, GetParam()));
+  // Every non-root rank hands on its whole image exactly once, piece by piece: its own pixels
+  // it gives away in the rounds, then the piece it composited.
+  if (w.rank != 0) {
+    EXPECT_GE(stats.bytes_sent, pixels * kPixelBytes + kHeaderBytes + kRunBytes);
+    EXPECT_LE(stats.bytes_sent, pixels * kPixelBytes + messages * (kHeaderBytes + kRunBytes));
+  }
+  std::uint64_t totals[] = {stats.bytes_sent, stats.bytes_received};
+  MPI_Allreduce(MPI_IN_PLACE, totals, 2, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_EQ(totals[0], totals[1]);
+}
+
+TEST_P(CompositeMpi, ReportsTheRoundsOfItsPlan) {
+  const World w = world();
+  Framebuffer image = random_image(64, 48, 1, w.rank, w.size, Coverage::full);
+  CompositeStats stats;
+  ASSERT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0}, &stats), MPI_SUCCESS);
+  EXPECT_EQ(stats.rounds, w.size == 1 ? 0 : make_plan(w.size, GetParam()).round_count());
+  EXPECT_GE(stats.seconds, 0.0);
+}
+
+std::string algorithm_name(const ::testing::TestParamInfo<CompositeAlgorithm>& info) {
+  constexpr const char* kNames[] = {"automatic", "binary_swap", "radix_k", "gather"};
+  return kNames[static_cast<int>(info.param)];
+}
+
+INSTANTIATE_TEST_SUITE_P(Algorithms, CompositeMpi,
+                         ::testing::Values(CompositeAlgorithm::automatic,
+                                           CompositeAlgorithm::binary_swap,
+                                           CompositeAlgorithm::radix_k, CompositeAlgorithm::gather),
+                         algorithm_name);
+
+TEST(CompositeOneRank, ReturnsAtOnceWithoutCopies) {
+  Framebuffer image = random_image(64, 48, 2, 0, 1, Coverage::random_rect);
+  const Framebuffer before = image;
+  const float* rgba = image.rgba.data();
+  CompositeStats stats;
+  stats.rounds = 99;
+  EXPECT_EQ(composite(image, MPI_COMM_SELF, {}, &stats), MPI_SUCCESS);
+  EXPECT_EQ(image.rgba.data(), rgba);
+  EXPECT_EQ(count_differences(image, before), 0u);
+  EXPECT_EQ(stats.rounds, 0);
+  EXPECT_EQ(stats.bytes_sent + stats.bytes_received, 0u);
+}
+
+TEST(CompositeErrors, DifferentImageSizesFailOnEveryRank) {
+  const World w = world();
+  if (w.size == 1) GTEST_SKIP() << "needs two ranks";
+  Framebuffer image(64, w.rank == 0 ? 48 : 47);
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {}), MPI_ERR_ARG);
+}
+
+TEST(CompositeErrors, MalformedImageFailsOnEveryRank) {
+  const World w = world();
+  Framebuffer image(64, 48);
+  if (w.rank == w.size - 1) image.hit.pop_back();
+  const int expected = w.size == 1 ? MPI_SUCCESS : MPI_ERR_ARG;
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {}), expected);
+}
+
+TEST(CompositeErrors, RootOutOfRangeFailsOnEveryRank) {
+  const World w = world();
+  Framebuffer image(16, 16);
+  CompositeOptions options;
+  options.root = w.size;
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, options), MPI_ERR_ROOT);
+}
+
+}  // namespace
+}  // namespace tetray::render

@@ -1,0 +1,282 @@
+// EXR and PNG files read back with the libraries' own readers and compared with the framebuffer
+// (EXR: half rounding, depth exact; PNG: the sRGB formula evaluated here independently), and
+// failed writes that must leave no temporary file and no damaged image.
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <sys/resource.h>
+
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+
+#include "support/png_read.hpp"
+#include "render/image/image_write.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace tetray::render {
+namespace {
+
+using testing::ScratchDir;
+
+// Random premultiplied colors (color <= alpha, some brighter than 1 to exercise clamping),
+// fully transparent background pixels with infinite depth, and a few edge values.
+Framebuffer random_image(int width, int height, unsigned seed) {
+  Framebuffer image(width, height);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    if (p % 5 == 0) continue;  // background
+    const float alpha = p % 7 == 0 ? 1.0f : unit(rng);
+    for (int c = 0; c < 3; ++c)
+      image.rgba[4 * p + c] = alpha * unit(rng) * (p % 11 == 0 ? 1.5f : 1.0f);
+    image.rgba[4 * p + 3] = alpha;
+    image.depth[p] = 0.1f + 100.0f * unit(rng);
+    image.hit[p] = static_cast<std::uint32_t>(p);
+  }
+  image.rgba[4] = image.rgba[5] = image.rgba[6] = image.rgba[7] = 1.0f;  // pixel 1: white
+  image.rgba[8 + 3] = 1e-7f;                                             // pixel 2: faint
+  image.depth[2] = 1e-30f;
+  return image;
+}
+
+std::vector<char> file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t entries_in(const std::filesystem::path& dir) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
+}
+
+// ------------------------------------------------------------------------------------------ EXR
+
+struct ExrChannels {
+  int width = 0, height = 0;
+  std::vector<float> r, g, b, a, z;
+};
+
+ExrChannels read_exr(const std::string& path, Imf::Header& header) {
+  Imf::InputFile file(path.c_str());
+  header = file.header();
+  const Imath::Box2i window = file.header().dataWindow();
+  ExrChannels out;
+  out.width = window.max.x - window.min.x + 1;
+  out.height = window.max.y - window.min.y + 1;
+  const std::size_t pixels = static_cast<std::size_t>(out.width) * out.height;
+  Imf::FrameBuffer slices;
+  std::pair<const char*, std::vector<float>*> channels[] = {
+      {"R", &out.r}, {"G", &out.g}, {"B", &out.b}, {"A", &out.a}, {"Z", &out.z}};
+  for (auto& [name, values] : channels) {
+    values->assign(pixels, -1.0f);
+    slices.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values->data()),
+                                   sizeof(float), sizeof(float) * out.width));
+  }
+  file.setFrameBuffer(slices);
+  file.readPixels(window.min.y, window.max.y);
+  return out;
+}
+
+// A half keeps 11 significant bits: relative error at most 2^-11 after rounding; below the
+// smallest normal half (2^-14) the spacing is 2^-24, so absolute error at most 2^-25.
+bool within_half_rounding(float original, float read) {
+  const double tolerance =
+      std::max(std::abs(double(original)) * std::ldexp(1.0, -11), std::ldexp(1.0, -25));
+  return std::abs(double(read) - double(original)) <= tolerance;
+}
+
+TEST(ExrWrite, RoundTripKeepsEveryChannel) {
+  ScratchDir dir;
+  const Framebuffer image = random_image(37, 23, 1);
+  const std::string path = dir / "image.exr";
+  const WriteResult result = write_exr(image, path);
+  ASSERT_TRUE(result.ok) << result.message;
+
+  Imf::Header header;
+  const ExrChannels read = read_exr(path, header);
+  EXPECT_EQ(header.compression(), Imf::ZIP_COMPRESSION);
+  for (const char* name : {"R", "G", "B", "A"}) {
+    ASSERT_NE(header.channels().findChannel(name), nullptr) << name;
+    EXPECT_EQ(header.channels().findChannel(name)->type, Imf::HALF) << name;
+  }
+  ASSERT_NE(header.channels().findChannel("Z"), nullptr);
+  EXPECT_EQ(header.channels().findChannel("Z")->type, Imf::FLOAT);
+  ASSERT_EQ(read.width, image.width);
+  ASSERT_EQ(read.height, image.height);
+
+  const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_TRUE(within_half_rounding(image.rgba[4 * p + c], (*rgba[c])[p]))
+          << "pixel " << p << " channel " << c << ": " << image.rgba[4 * p + c] << " -> "
+          << (*rgba[c])[p];
+    }
+    ASSERT_EQ(read.z[p], image.depth[p]) << "pixel " << p;  // exact, including +inf
+  }
+  EXPECT_TRUE(std::isinf(read.z[0]));
+}
+
+// ------------------------------------------------------------------------------------------ PNG
+
+double srgb_encode(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+// The expected file content of one pixel: un-premultiply, clamp, sRGB, round; straight alpha.
+std::array<int, 4> expected_png_pixel(const float* rgba) {
+  const double alpha = std::clamp(double(rgba[3]), 0.0, 1.0);
+  if (alpha <= 0.0) return {0, 0, 0, 0};
+  std::array<int, 4> out{};
+  for (int c = 0; c < 3; ++c) {
+    const double straight = std::clamp(double(rgba[c]) / alpha, 0.0, 1.0);
+    out[c] = static_cast<int>(std::lround(255.0 * srgb_encode(straight)));
+  }
+  out[3] = static_cast<int>(std::lround(255.0 * alpha));
+  return out;
+}
+
+TEST(PngWrite, RoundTripMatchesTheSrgbFormula) {
+  ScratchDir dir;
+  const Framebuffer image = random_image(41, 29, 2);
+  for (int level : {0, 1, 9}) {
+    const std::string path = dir / ("image" + std::to_string(level) + ".png");
+    const WriteResult result = write_png(image, path, level);
+    ASSERT_TRUE(result.ok) << result.message;
+    const testing::PngPixels read = testing::read_png_rgba8(path);
+    ASSERT_TRUE(read.error.empty()) << read.error;
+    EXPECT_TRUE(read.srgb);
+    ASSERT_EQ(read.width, image.width);
+    ASSERT_EQ(read.height, image.height);
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      const std::array<int, 4> expected = expected_png_pixel(&image.rgba[4 * p]);
+      for (int c = 0; c < 4; ++c) {
+        ASSERT_EQ(read.rgba[4 * p + c], expected[c]) << "pixel " << p << " channel " << c;
+      }
+    }
+    EXPECT_EQ(read.rgba[4 * 1 + 0], 255);  // the white pixel
+    EXPECT_EQ(read.rgba[4 * 0 + 3], 0);    // background stays transparent
+  }
+}
+
+TEST(PngWrite, RejectsABadCompressionLevel) {
+  ScratchDir dir;
+  const WriteResult result = write_png(random_image(4, 4, 3), dir / "x.png", 10);
+  EXPECT_FALSE(result.ok);
+  EXPECT_NE(result.message.find("compression level 10"), std::string::npos) << result.message;
+  EXPECT_EQ(entries_in(dir.path()), 0u);
+}
+
+// --------------------------------------------------------------------------------------- Errors
+
+// Both formats, through the extension dispatch as the adaptor and tetray-render use them.
+void expect_failed_write(const std::string& path, const std::string& cause) {
+  for (const std::string extension : {".png", ".exr"}) {
+    const WriteResult result = write_image(random_image(8, 8, 4), path + extension);
+    EXPECT_FALSE(result.ok) << path + extension;
+    EXPECT_NE(result.message.find(path + extension), std::string::npos) << result.message;
+    EXPECT_NE(result.message.find(cause), std::string::npos) << result.message;
+  }
+}
+
+TEST(ImageWriteErrors, MissingDirectory) {
+  ScratchDir dir;
+  expect_failed_write(dir / "no_such_dir/image", "No such file or directory");
+  EXPECT_EQ(entries_in(dir.path()), 0u);
+}
+
+TEST(ImageWriteErrors, PathBelowARegularFile) {
+  // Root ignores directory permissions, so a read-only directory would not fail here; a path
+  // through a regular file fails for every user.
+  ScratchDir dir;
+  std::ofstream(dir / "plain_file") << "x";
+  expect_failed_write(dir / "plain_file/image", "Not a directory");
+  EXPECT_EQ(entries_in(dir.path()), 1u);
+}
+
+TEST(ImageWriteErrors, UnknownExtension) {
+  ScratchDir dir;
+  const WriteResult result = write_image(random_image(4, 4, 5), dir / "image.jpg");
+  EXPECT_FALSE(result.ok);
+  EXPECT_NE(result.message.find("image.jpg"), std::string::npos) << result.message;
+}
+
+TEST(ImageWriteErrors, BadFramebufferLeavesExistingFileUntouched) {
+  ScratchDir dir;
+  const std::string path = dir / "image.png";
+  ASSERT_TRUE(write_png(random_image(16, 16, 6), path).ok);
+  const std::vector<char> before = file_bytes(path);
+  Framebuffer broken(16, 16);
+  broken.rgba.resize(10);
+  for (const WriteResult& result : {write_png(broken, path), write_png(Framebuffer(), path)}) {
+    EXPECT_FALSE(result.ok);
+    EXPECT_NE(result.message.find(path), std::string::npos) << result.message;
+  }
+  EXPECT_EQ(file_bytes(path), before);
+  EXPECT_EQ(entries_in(dir.path()), 1u);
+}
+
+// A disk that fills up mid-write, simulated with the file size limit (write() then fails with
+// EFBIG instead of killing the process, since SIGXFSZ is ignored): the earlier image survives
+// byte for byte and the temporary file is gone.
+TEST(ImageWriteErrors, FullDiskKeepsEarlierImage) {
+  ScratchDir dir;
+  const Framebuffer small = random_image(8, 8, 7);
+  const Framebuffer large = random_image(256, 256, 8);
+  for (const std::string name : {"image.png", "image.exr"}) {
+    const std::string path = dir / name;
+    ASSERT_TRUE(write_image(small, path).ok);
+    const std::vector<char> before = file_bytes(path);
+    ASSERT_LT(before.size(), 4096u);
+
+    rlimit saved{};
+    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+    const auto previous_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limited = saved;
+    limited.rlim_cur = 4096;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limited), 0);
+    const WriteResult result = write_image(large, path);
+    setrlimit(RLIMIT_FSIZE, &saved);
+    std::signal(SIGXFSZ, previous_handler);
+
+    EXPECT_FALSE(result.ok);
+    EXPECT_NE(result.message.find(path), std::string::npos) << result.message;
+    EXPECT_NE(result.message.find("File too large"), std::string::npos) << result.message;
+    EXPECT_EQ(file_bytes(path), before);
+  }
+  EXPECT_EQ(entries_in(dir.path()), 2u);
+}
+
+// The same on a real full file system where one can be mounted (root on Linux).
+TEST(ImageWriteErrors, FullTmpfsKeepsEarlierImage) {
+  ScratchDir dir;
+  const std::string mount_point = dir / "tiny";
+  std::filesystem::create_directory(mount_point);
+  if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=16k") != 0) {
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root)";
+  }
+  const std::string path = mount_point + "/image.png";
+  const bool small_written = write_png(random_image(8, 8, 9), path).ok;
+  const std::vector<char> before = file_bytes(path);
+  const WriteResult result = write_png(random_image(256, 256, 10), path, 0);
+  const std::vector<char> after = file_bytes(path);
+  const std::size_t entries = entries_in(mount_point);
+  ::umount(mount_point.c_str());
+
+  EXPECT_TRUE(small_written);
+  EXPECT_FALSE(before.empty());
+  EXPECT_FALSE(result.ok);
+  EXPECT_NE(result.message.find(path), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("No space left on device"), std::string::npos) << result.message;
+  EXPECT_EQ(after, before);
+  EXPECT_EQ(entries, 1u);
+}
+
+}  // namespace
+}  // namespace tetray::render

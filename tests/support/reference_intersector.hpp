@@ -1,0 +1,72 @@
+// The brute-force double-precision reference for tetray's images: every pixel ray is tested
+// against every tet of the volume (the renderer's own float data, read in double), nearest hit
+// over all tets and isovalues. It shares only the camera (which defines the rays) and the tet
+// data with the renderer. Slow by design: for meshes of a few thousand tets.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "support/reference_tet.hpp"
+#include "render/trace/camera.hpp"
+#include "render/volume/tet_volume.hpp"
+
+namespace tetray::test {
+
+// Relative distances below this make a ray "grazing": float rounding in the renderer may
+// decide either way, so comparisons exempt it.
+inline constexpr double kGrazingDistance = 1e-6;
+
+struct ReferenceHit {
+  static constexpr double kNone = std::numeric_limits<double>::infinity();
+
+  bool hit = false;
+  double t = kNone;      // ray parameter (unit direction) of the nearest hit
+  double depth = kNone;  // view-axis depth of DESIGN §3
+  std::uint32_t tet_id = 0;
+  int surface = -1;    // index of the isovalue hit
+  double abs_cos = 0;  // |cos| between the ray and the surface normal
+  // Depth of the nearest hit on any other isopolygon (a near tie makes the hit id ambiguous).
+  double second_depth = kNone;
+  // Relative (to length_scale) distances from the ray, up to just past the hit (or through
+  // the whole mesh on a miss), to the nearest isopolygon edge and the nearest tet edge.
+  // Exact below 2 kGrazingDistance; a larger value only says the true one is larger too.
+  double isopolygon_edge_distance = kNone;
+  double tet_edge_distance = kNone;
+  double length_scale = 0;  // float rounding in the renderer scales with this length
+};
+
+// Copies the tets of `volume` to double precision with their caller ids.
+std::vector<ReferenceTet> reference_tets(const render::TetVolume& volume);
+
+class ReferenceIntersector {
+ public:
+  ReferenceIntersector(const render::TetVolume& volume, std::vector<double> isovalues);
+
+  ReferenceHit trace_ray(const render::CameraFrame& frame, Vec3d direction) const;
+  // One ReferenceHit per pixel, row-major from the top-left (Framebuffer::index), computed in
+  // parallel over rows.
+  std::vector<ReferenceHit> trace_image(const render::Camera& camera) const;
+
+ private:
+  Vec3d origin_;
+  double extent_;  // diagonal of the tets' bounding box
+  std::vector<ReferenceTet> tets_;
+  std::vector<double> isovalues_;
+};
+
+// Decides whether a ray's exact path (t >= 0) passes through a point of some tet where the
+// piecewise-linear field is below `level`: the rays that must hit a closed level set.
+class BelowLevelProbe {
+ public:
+  BelowLevelProbe(const render::TetVolume& volume, double level);
+  bool passes_below(Vec3d eye, Vec3d direction) const;
+
+ private:
+  Vec3d origin_;
+  double level_;
+  std::vector<ReferenceTet> tets_;  // only those with a vertex below the level
+};
+
+}  // namespace tetray::test

@@ -1,0 +1,199 @@
+// tetray-adaptor-bench: what the adaptor costs the solver on the gyroid-twist scene (DESIGN §6,
+// issue 5): the adaptor's own overhead per rendered step (validation, conversion, bookkeeping:
+// the blocked time minus refit and trace) against refit + trace; the cost of an off-trigger
+// execute; and the time a rendered step blocks the solver with and without the writer thread.
+// Prints a table and a JSON object.
+#include <mpi.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "render/core/stopwatch.hpp"
+#include "tetray/adaptor.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace {
+
+struct Options {
+  int n = 56;
+  int steps = 5;
+  long off_calls = 1'000'000;
+  int size = 1024;
+  std::string out = "out/adaptor_bench";
+};
+
+// One rendered step as the solver sees it and as the log splits it.
+struct StepTimes {
+  double blocked_ms = 0, check_ms = 0, ingest_ms = 0, bvh_ms = 0, trace_ms = 0, queue_wait_ms = 0,
+         encode_ms = 0, write_ms = 0;
+  double overhead_ms() const { return blocked_ms - bvh_ms - trace_ms - queue_wait_ms; }
+};
+
+std::string config(const Options& o, const std::string& dir, int queue_depth, int every) {
+  std::ostringstream yaml;
+  yaml << "output: {directory: " << dir << ", quiet: true, writer_queue_depth: " << queue_depth
+       << "}\ntrigger: {every: " << every << "}\nscenes:\n"
+       << "  - {name: gyroid, field: f, isovalues: [0],\n"
+       << "     camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40},\n"
+       << "     image: {width: " << o.size << ", height: " << o.size << "}}\n";
+  return yaml.str();
+}
+
+std::unique_ptr<tetray::Adaptor> make(const std::string& yaml) {
+  tetray::Status status;
+  auto adaptor = tetray::Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status);
+  if (!adaptor) std::fprintf(stderr, "tetray-adaptor-bench: %s\n", status.message.c_str());
+  return adaptor;
+}
+
+// Column `name` of every data row of a CSV.
+std::vector<double> column(const std::string& path, const std::string& name) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream head(line);
+  for (std::string c; std::getline(head, c, ',');) header.push_back(c);
+  const auto index =
+      static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string c;
+    for (std::size_t k = 0; k <= index && std::getline(row, c, ','); ++k) {
+    }
+    values.push_back(std::stod(c));
+  }
+  return values;
+}
+
+// Renders `o.steps` steps of the deforming gyroid; returns the per-step times.
+std::vector<StepTimes> rendered_steps(const Options& o, const tetray::GyroidTwist& scene,
+                                      const std::string& dir, int queue_depth) {
+  auto adaptor = make(config(o, dir, queue_depth, 1));
+  if (!adaptor) return {};
+  std::vector<double> points = scene.mesh.points, field = scene.field;
+  std::vector<StepTimes> times(static_cast<std::size_t>(o.steps));
+  for (int step = 0; step < o.steps; ++step) {
+    const double t = 0.1 * step;
+    tetray::deform_gyroid_twist(scene.mesh, t, points, field);  // the solver's work, not timed
+    const tetray::MeshView mesh{
+        tetray::PointsView::of(points),
+        tetray::TetsView::of(std::span<const std::int64_t>(scene.mesh.tets))};
+    const tetray::FieldView fields[] = {tetray::FieldView::of("f", field)};
+    tetray::ExecuteReport report;
+    const tetray::Status status =
+        adaptor->execute(step, t, mesh, fields, {true, step == 0, true}, &report);
+    if (!status.ok()) std::fprintf(stderr, "tetray-adaptor-bench: %s\n", status.message.c_str());
+    times[static_cast<std::size_t>(step)].blocked_ms = report.seconds_blocked * 1e3;
+  }
+  adaptor->finalize();
+  const std::string log = dir + "/tetray_log.csv";
+  const auto fill = [&](const char* name, double StepTimes::*member) {
+    const auto values = column(log, name);
+    for (std::size_t k = 0; k < std::min(values.size(), times.size()); ++k)
+      times[k].*member = values[k];
+  };
+  fill("check_ms", &StepTimes::check_ms);
+  fill("ingest_ms", &StepTimes::ingest_ms);
+  fill("bvh_ms", &StepTimes::bvh_ms);
+  fill("trace_ms", &StepTimes::trace_ms);
+  fill("queue_wait_ms", &StepTimes::queue_wait_ms);
+  fill("encode_ms", &StepTimes::encode_ms);
+  fill("write_ms", &StepTimes::write_ms);
+  return times;
+}
+
+// Mean over the refit steps (all but the first, which builds the BVH).
+StepTimes steady_mean(const std::vector<StepTimes>& steps) {
+  StepTimes mean;
+  const double n = static_cast<double>(std::max<std::size_t>(steps.size(), 2) - 1);
+  for (std::size_t k = 1; k < steps.size(); ++k) {
+    const StepTimes& s = steps[k];
+    mean.blocked_ms += s.blocked_ms / n;
+    mean.check_ms += s.check_ms / n;
+    mean.ingest_ms += s.ingest_ms / n;
+    mean.bvh_ms += s.bvh_ms / n;
+    mean.trace_ms += s.trace_ms / n;
+    mean.queue_wait_ms += s.queue_wait_ms / n;
+    mean.encode_ms += s.encode_ms / n;
+    mean.write_ms += s.write_ms / n;
+  }
+  return mean;
+}
+
+double off_trigger_ns(const Options& o, const tetray::GyroidTwist& scene, const std::string& dir) {
+  auto adaptor = make(config(o, dir, 2, 1'000'000'000));
+  if (!adaptor) return 0;
+  const tetray::MeshView mesh{tetray::PointsView::of(std::span<const double>(scene.mesh.points)),
+                              tetray::TetsView::of(std::span<const std::int64_t>(scene.mesh.tets))};
+  const tetray::FieldView fields[] = {
+      tetray::FieldView::of("f", std::span<const double>(scene.field))};
+  const tetray::render::Stopwatch watch;
+  for (long step = 1; step <= o.off_calls; ++step) {
+    adaptor->execute(step, static_cast<double>(step), mesh, fields, {true, false, true});
+  }
+  const double ns = watch.ms() * 1e6;
+  adaptor->finalize();
+  return ns / static_cast<double>(o.off_calls);
+}
+
+void print(const Options& o, std::size_t tets, const StepTimes& writer, const StepTimes& inline_,
+           double off_ns) {
+  const double render_ms = writer.bvh_ms + writer.trace_ms;
+  std::printf("tetray-adaptor-bench: gyroid-twist n=%d (%zu tets), %dx%d, mean of steps 1..%d\n",
+              o.n, tets, o.size, o.size, o.steps - 1);
+  std::printf("  %-44s %10.3f ms\n", "refit + trace", render_ms);
+  std::printf("  %-44s %10.3f ms  (%.1f%% of refit + trace; target < 10%%)\n",
+              "adaptor overhead (blocked - refit - trace)", writer.overhead_ms(),
+              100 * writer.overhead_ms() / render_ms);
+  std::printf("  %-44s %10.3f ms\n", "  of which validation (check)", writer.check_ms);
+  std::printf("  %-44s %10.3f ms\n", "  of which conversion (ingest)", writer.ingest_ms);
+  std::printf("  %-44s %10.1f ns  (target < 1000 ns)\n", "off-trigger execute", off_ns);
+  std::printf("  %-44s %10.3f ms  (%.1f%% over refit + trace; target <= 5%%)\n",
+              "blocked per step, writer thread", writer.blocked_ms,
+              100 * (writer.blocked_ms / render_ms - 1));
+  std::printf("  %-44s %10.3f ms  (encode %.1f ms, write %.1f ms)\n",
+              "blocked per step, writing in execute", inline_.blocked_ms, inline_.encode_ms,
+              inline_.write_ms);
+  std::printf(
+      "{\"n\": %d, \"tets\": %zu, \"width\": %d, \"refit_trace_ms\": %.4f, \"overhead_ms\": %.4f, "
+      "\"check_ms\": %.4f, \"ingest_ms\": %.4f, \"off_trigger_ns\": %.2f, "
+      "\"blocked_writer_thread_ms\": %.4f, \"blocked_inline_write_ms\": %.4f, "
+      "\"encode_ms\": %.4f, \"write_ms\": %.4f}\n",
+      o.n, tets, o.size, render_ms, writer.overhead_ms(), writer.check_ms, writer.ingest_ms, off_ns,
+      writer.blocked_ms, inline_.blocked_ms, inline_.encode_ms, inline_.write_ms);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  CLI::App app{"tetray-adaptor-bench: adaptor overhead, off-trigger cost, writer thread"};
+  Options o;
+  app.add_option("-n", o.n, "gyroid-twist resolution (6 n^3 tets)");
+  app.add_option("--steps", o.steps, "rendered steps (the first builds the BVH)")
+      ->check(CLI::Range(2, 100));
+  app.add_option("--off-calls", o.off_calls, "off-trigger execute calls to average");
+  app.add_option("--size", o.size, "image width and height");
+  app.add_option("--out", o.out, "output directory (images and logs)");
+  int code = 0;
+  try {
+    app.parse(argc, argv);
+    const tetray::GyroidTwist scene = tetray::make_gyroid_twist(o.n, 0.0);
+    const StepTimes writer = steady_mean(rendered_steps(o, scene, o.out + "/writer_thread", 2));
+    const StepTimes inline_ = steady_mean(rendered_steps(o, scene, o.out + "/inline", 0));
+    const double off_ns = off_trigger_ns(o, scene, o.out + "/off_trigger");
+    print(o, scene.mesh.tet_count(), writer, inline_, off_ns);
+  } catch (const CLI::ParseError& e) {
+    code = app.exit(e);
+  }
+  MPI_Finalize();
+  return code;
+}

@@ -1,0 +1,103 @@
+// tetray-bench: the gyroid-twist benchmark of DESIGN §6 (issues 3 and 4). Per size it measures
+// tetray (build, trace, counts, refit) and, in the same run and the same oneTBB arena, the
+// extract-then-trace reference (VTK contour + Embree), prints a table with the targets and
+// optionally writes JSON.
+#include <unistd.h>
+
+#include <tbb/task_arena.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "bench_depth_compare.hpp"
+#include "bench_json.hpp"
+#include "bench_machine.hpp"
+#include "bench_options.hpp"
+#include "bench_reference_embree.hpp"
+#include "bench_reference_vtk.hpp"
+#include "bench_refit.hpp"
+#include "bench_scene.hpp"
+#include "bench_table.hpp"
+#include "bench_tetray.hpp"
+#include "bench_timing.hpp"
+
+namespace tetray::bench {
+namespace {
+
+std::size_t available_memory() {
+  return static_cast<std::size_t>(sysconf(_SC_AVPHYS_PAGES)) *
+         static_cast<std::size_t>(sysconf(_SC_PAGE_SIZE));
+}
+
+ReferenceFigures measure_reference(const GyroidTwist& scene, const render::Camera& camera,
+                                   const render::Framebuffer& tetray_image, int threads) {
+  const ContourRun contour = contour_with_vtk(scene.mesh, scene.field, kIsovalue);
+  const EmbreeRun embree = trace_with_embree(contour.triangles, camera, threads);
+  const DepthAgreement agreement = compare_depth(tetray_image.depth, embree.depth);
+  ReferenceFigures ref;
+  ref.contour_ms = contour.contour_ms;
+  ref.triangles = contour.triangles.triangle_count();
+  ref.embree_build_ms = embree.build_ms;
+  ref.embree_trace_ms = embree.trace_ms;
+  ref.embree_packets = embree.packets;
+  ref.depth_agree_fraction = agreement.agree_fraction;
+  ref.depth_median_rel_diff = agreement.median_rel_diff;
+  return ref;
+}
+
+SceneFigures measure_scene(int n, const BenchOptions& options) {
+  const double cpu_start = process_cpu_seconds();
+  const render::Stopwatch wall;
+  const render::Camera camera = bench_camera(options.size_px);
+  const GyroidTwist scene = make_gyroid_twist(n, 0.0);
+  SceneFigures figures;
+  figures.n = n;
+  figures.tets = scene.mesh.tet_count();
+  TetrayRun tetray = measure_tetray(scene, camera);
+  figures.tetray = std::move(tetray.figures);
+  figures.ref = measure_reference(scene, camera, tetray.image, options.threads);
+  figures.refit =
+      measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
+  figures.cpu_share =
+      (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
+  return figures;
+}
+
+BenchReport run_bench(const BenchOptions& options) {
+  BenchReport report;
+  report.machine = describe_machine();
+  report.threads = options.threads;
+  print_header(report.machine, options.threads, options.size_px);
+  tbb::task_arena arena(options.threads);
+  for (const int n : options.sizes) {
+    if (estimated_bytes(n) > available_memory() / 10 * 8) {
+      report.skipped.push_back("n = " + std::to_string(n) + " skipped: needs about " +
+                               std::to_string(estimated_bytes(n) >> 20) + " MiB, " +
+                               std::to_string(available_memory() >> 20) + " MiB available");
+      print_note(report.skipped.back());
+      continue;
+    }
+    arena.execute([&] { report.scenes.push_back(measure_scene(n, options)); });
+    print_scene(report.scenes.back());
+  }
+  return report;
+}
+
+}  // namespace
+}  // namespace tetray::bench
+
+int main(int argc, char** argv) {
+  using namespace tetray::bench;
+  int exit_code = -1;
+  const BenchOptions options = parse_options(argc, argv, exit_code);
+  if (exit_code >= 0) return exit_code;
+  try {
+    const BenchReport report = run_bench(options);
+    if (!options.json_path.empty()) write_json(report, options.json_path);
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "tetray-bench: %s\n", error.what());
+    return 1;
+  }
+}

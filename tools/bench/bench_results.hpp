@@ -1,0 +1,86 @@
+// The figures tetray-bench measures, one record per scene; the table printer, the JSON writer
+// and the target checks all read these, so every figure has exactly one name.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "render/trace/trace.hpp"
+
+namespace tetray::bench {
+
+// The JSON objects per packet size are keyed by render::to_string(packet).
+
+struct PacketFigures {
+  render::PacketSize packet = render::PacketSize::p16x16;
+  double trace_ms = 0;
+  double mrays_per_s = 0;
+  render::TraceStats counts{};  // one frame, from a separate run with statistics on
+};
+
+struct TetrayFigures {
+  double build_bih_ms = 0;
+  double build_sah_ms = 0;
+  double bvh_bytes_per_tet = 0;  // BVH nodes + tet id array, per tet
+  std::size_t bvh_nodes = 0;
+  std::vector<PacketFigures> packets;  // in render::kPacketSizes order
+};
+
+struct ReferenceFigures {
+  double contour_ms = 0;
+  std::size_t triangles = 0;
+  double embree_build_ms = 0;
+  double embree_trace_ms = 0;
+  bool embree_packets = false;  // the faster of Embree's traces is the packet one, not single rays
+  double depth_agree_fraction = 0;
+  double depth_median_rel_diff = 0;
+};
+
+// Issue 4: a new time step on the same topology. The bounds are memcpy times of the bytes each
+// update must touch (bench_bandwidth.hpp says which).
+struct RefitFigures {
+  double field_only_ms = 0;
+  double geometry_ms = 0;
+  std::size_t bytes_field_only = 0;
+  std::size_t bytes_geometry = 0;
+  double bound_field_only_ms = 0;
+  double bound_geometry_ms = 0;
+  double rebuild_ms = 0;
+  // update (geometry + field) + trace, each step the best of a few runs, median over steps:
+  double step_total_ms = 0;          // traced in 16x16 packets, as issue 4 defines the step
+  double step_total_default_ms = 0;  // in the default packets (render::TraceOptions)
+  double ref_step_total_ms = 0;
+  double quality_ratio_after_steps = 0;
+  std::string strong_deformation_kind;  // the policy's decision after a strong twist
+  double strong_deformation_ratio = 0;
+};
+
+struct SceneFigures {
+  int n = 0;
+  std::size_t tets = 0;
+  // CPU time the process used / (wall time x threads) while measuring this scene: well below 1
+  // means other processes held the cores and the absolute times are inflated (ratios less so).
+  double cpu_share = 0;
+  TetrayFigures tetray;
+  ReferenceFigures ref;
+  RefitFigures refit;
+
+  const PacketFigures& packet(render::PacketSize size) const;
+};
+
+struct MachineInfo {
+  std::string cpu_model;
+  unsigned cores = 0;
+  std::string simd_target;
+};
+
+struct BenchReport {
+  MachineInfo machine;
+  int threads = 0;
+  std::vector<SceneFigures> scenes;
+  std::vector<std::string> skipped;  // one note per size that was not run
+};
+
+}  // namespace tetray::bench
