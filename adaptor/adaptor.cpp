@@ -27,57 +27,47 @@ Status duplicate(MPI_Comm comm, Communicator& out) {
   return Status::success();
 }
 
-// Collective: every rank parses (the text or the file) for the communicator's size, the ranks
-// agree on the outcome, and the writer rank prepares the outputs.
-template <typename Parse>
-std::unique_ptr<Adaptor::Impl> make_impl(MPI_Comm comm, Parse&& parse, Status& status) {
-  Communicator c;
-  status = duplicate(comm, c);
-  if (!status.ok()) return nullptr;
-  config::ParseResult parsed = parse(c.size);
-  if (!parsed.config) status = {StatusCode::config_error, parsed.error};
-  render::ValueRange failure[1];
-  status = agree(c, status, failure);
-  if (!status.ok()) {
-    MPI_Comm_free(&c.comm);
-    return nullptr;
-  }
-  auto impl = std::make_unique<Adaptor::Impl>(c, std::move(*parsed.config));
-  status = impl->start();
-  if (!status.ok()) return nullptr;
-  return impl;
-}
-
 }  // namespace
 
 Adaptor::Adaptor(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Adaptor::~Adaptor() = default;
 
-std::unique_ptr<Adaptor> Adaptor::create(MPI_Comm comm, const std::string& config_path,
-                                         Status& status) {
+// Collective: every rank parses (the text or the file) for the communicator's size, the ranks
+// agree on the outcome, and the writer rank prepares the outputs.
+template <typename Parse>
+std::unique_ptr<Adaptor> Adaptor::create_with(MPI_Comm comm, Parse&& parse, Status& status) {
   try {
-    auto impl = make_impl(
-        comm, [&](int rank_count) { return config::load_config_file(config_path, rank_count); },
-        status);
-    return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
+    Communicator c;
+    status = duplicate(comm, c);
+    if (!status.ok()) return nullptr;
+    config::ParseResult parsed = parse(c.size);
+    if (!parsed.config) status = {StatusCode::config_error, parsed.error};
+    status = agree(c, status);
+    if (!status.ok()) {
+      MPI_Comm_free(&c.comm);
+      return nullptr;
+    }
+    auto impl = std::make_unique<Impl>(c, std::move(*parsed.config));
+    status = impl->start();
+    if (status.ok()) return std::unique_ptr<Adaptor>(new Adaptor(std::move(impl)));
   } catch (const std::exception& e) {
     status = internal("create", e.what());
   }
   return nullptr;
 }
 
+std::unique_ptr<Adaptor> Adaptor::create(MPI_Comm comm, const std::string& config_path,
+                                         Status& status) {
+  return create_with(
+      comm, [&](int rank_count) { return config::load_config_file(config_path, rank_count); },
+      status);
+}
+
 std::unique_ptr<Adaptor> Adaptor::create_from_yaml(MPI_Comm comm, std::string_view yaml,
                                                    Status& status) {
-  try {
-    auto impl = make_impl(
-        comm,
-        [&](int rank_count) { return config::parse_config(yaml, "<yaml string>", rank_count); },
-        status);
-    return impl ? std::unique_ptr<Adaptor>(new Adaptor(std::move(impl))) : nullptr;
-  } catch (const std::exception& e) {
-    status = internal("create", e.what());
-  }
-  return nullptr;
+  return create_with(
+      comm, [&](int rank_count) { return config::parse_config(yaml, "<yaml string>", rank_count); },
+      status);
 }
 
 bool Adaptor::will_render(std::int64_t step, double time) const {

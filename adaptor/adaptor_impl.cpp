@@ -10,9 +10,9 @@
 #include "input_views.hpp"
 #include "output_files.hpp"
 #include "render/composite/composite.hpp"
-#include "render/volume/mesh_check.hpp"
-#include "render/trace/trace.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/trace/trace.hpp"
+#include "render/volume/mesh_check.hpp"
 
 namespace tetray {
 namespace {
@@ -58,7 +58,7 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     scenes_.push_back(std::move(state));
   }
   skipped_.assign(volumes_.size(), 0);
-  ranges_.resize(1 + 4 * scenes_.size());
+  ranges_.scenes.resize(scenes_.size());
 }
 
 Adaptor::Impl::~Impl() {
@@ -70,8 +70,7 @@ Adaptor::Impl::~Impl() {
 
 Status Adaptor::Impl::start() {
   const Status status = guarded("create", [&] { return prepare_outputs_on_this_rank(); });
-  render::ValueRange failure[1];
-  return agree(comm_, status, failure);
+  return agree(comm_, status);
 }
 
 Status Adaptor::Impl::prepare_outputs_on_this_rank() {
@@ -140,25 +139,22 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   bvh_decision_ = "none";
   tets_skipped_ = 0;
   local_tets_ = mesh.tets.count;
-  std::fill(ranges_.begin(), ranges_.end(), render::ValueRange{});
+  ranges_.clear();
   Status status = guarded("validation", [&] { return validate(mesh, fields); });
-  status = agree(comm_, status, std::span(ranges_).first(4));
+  status = agree(comm_, status, &ranges_);
   if (!status.ok()) return status;
-  if (!ranges_[1].empty()) {
-    origin_ = 0.5 * (render::Vec3d{ranges_[1].lo, ranges_[2].lo, ranges_[3].lo} +
-                     render::Vec3d{ranges_[1].hi, ranges_[2].hi, ranges_[3].hi});
-  }
-  std::fill(ranges_.begin(), ranges_.end(), render::ValueRange{});
+  if (!ranges_.points.empty()) origin_ = 0.5 * (ranges_.points.lo() + ranges_.points.hi());
+  ranges_.clear();
   status = guarded("BVH update", [&] { return update_volumes(mesh, fields); });
   if (status.ok())
     status = guarded("bounds and color ranges", [&] { return global_inputs(fields); });
-  status = agree(comm_, status, ranges_);
+  status = agree(comm_, status, &ranges_);
   if (!status.ok()) return status;
   status = guarded("trace", [&] { return trace_scenes(fields); });
   if (status.ok() && config_.output.per_rank_images) {
     status = guarded("per-rank images", [&] { return write_rank_images(); });
   }
-  status = agree(comm_, status, std::span(ranges_).first(1));
+  status = agree(comm_, status);
   if (!status.ok()) return status;
   status = guarded("composite", [&] { return composite_and_submit(); });
   if (!status.ok()) return status;
@@ -187,7 +183,7 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
     if (Status st = check_volume(v, mesh, fields); !st.ok()) return st;
     loading = loading || volumes_[v].needs_load(epochs_);
   }
-  if (loading) add_point_bounds(mesh.points, std::span(ranges_).subspan(1, 3));
+  if (loading) add_point_bounds(mesh.points, ranges_.points);
   return Status::success();
 }
 
@@ -260,18 +256,18 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
-    const std::span<render::ValueRange> ranges = std::span(ranges_).subspan(1 + 4 * k, 4);
+    SceneRanges& ranges = ranges_.scenes[k];
     const FieldVolume& volume = volumes_[s.volume];
     if (s.config.camera.auto_fit && !volume.bvh().empty()) {
       const render::Bounds4& b = volume.bvh().nodes[0].bounds;
       for (int a = 0; a < 3; ++a) {
-        ranges[a].include(volume.volume().origin[a] + b.lo[a]);
-        ranges[a].include(volume.volume().origin[a] + b.hi[a]);
+        ranges.box.axis[a].include(volume.volume().origin[a] + b.lo[a]);
+        ranges.box.axis[a].include(volume.volume().origin[a] + b.hi[a]);
       }
     }
     if (s.colormap != nullptr && s.config.color_range.automatic) {
       const render::Stopwatch watch;
-      ranges[3] = local_field_range(field_or_empty(fields, s.config.color_by));
+      ranges.color = local_field_range(field_or_empty(fields, s.config.color_by));
       s.record.color_ms += watch.ms();
     }
   }
@@ -291,14 +287,14 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
                                field_source(field_or_empty(fields, s.config.color_by)));
       render::ValueRange range =
           s.config.color_range.automatic
-              ? ranges_[1 + 4 * k + 3]
+              ? ranges_.scenes[k].color
               : render::ValueRange{s.config.color_range.lo, s.config.color_range.hi};
       usable_color_range(range);
       options.color_by = {s.colormap, static_cast<float>(range.lo), static_cast<float>(range.hi)};
       s.record.color_ms += watch.ms();
     }
     const render::Stopwatch watch;
-    s.image = render::trace(volume.volume(), volume.bvh(), camera_for(s, 1 + 4 * k),
+    s.image = render::trace(volume.volume(), volume.bvh(), camera_for(s, ranges_.scenes[k]),
                             s.config.surfaces, options);
     s.record.trace_ms = watch.ms();
   }
@@ -316,7 +312,7 @@ Status Adaptor::Impl::write_rank_images() {
   return Status::success();
 }
 
-render::Camera Adaptor::Impl::camera_for(const SceneState& s, std::size_t first_range) const {
+render::Camera Adaptor::Impl::camera_for(const SceneState& s, const SceneRanges& ranges) const {
   const config::CameraSpec& spec = s.config.camera;
   if (!spec.auto_fit) {
     render::Camera camera = spec.fixed;
@@ -325,30 +321,27 @@ render::Camera Adaptor::Impl::camera_for(const SceneState& s, std::size_t first_
     return camera;
   }
   render::Vec3d lo{-1, -1, -1}, hi{1, 1, 1};  // nothing to fit on any rank
-  if (!ranges_[first_range].empty()) {
-    lo = {ranges_[first_range].lo, ranges_[first_range + 1].lo, ranges_[first_range + 2].lo};
-    hi = {ranges_[first_range].hi, ranges_[first_range + 1].hi, ranges_[first_range + 2].hi};
+  if (!ranges.box.empty()) {
+    lo = ranges.box.lo();
+    hi = ranges.box.hi();
   }
   return render::fit_camera(lo, hi, spec.view_direction, spec.up, spec.fov_deg, s.config.width,
                             s.config.height);
 }
 
 Status Adaptor::Impl::composite_and_submit() {
-  // Per scene: tets, kept tets, skipped tets, renderer bytes (summed); peak RSS (largest).
-  std::vector<std::uint64_t> sums(4 * scenes_.size(), 0);
+  // Per scene the counters summed over the ranks; the largest peak RSS.
+  std::vector<SceneCounters> sums(scenes_.size());
   std::uint64_t rss = peak_rss_bytes();
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const FieldVolume& volume = volumes_[scenes_[k].volume];
     if (!scenes_[k].due) continue;
-    sums[4 * k] = local_tets_;
-    sums[4 * k + 1] = volume.volume().tets.size();
-    sums[4 * k + 2] = skipped_[scenes_[k].volume];
-    sums[4 * k + 3] = volume.volume().bytes() + volume.bvh().bytes();
+    sums[k] = {local_tets_, volume.volume().tets.size(), skipped_[scenes_[k].volume],
+               volume.volume().bytes() + volume.bvh().bytes()};
   }
   const int writer = config_.output.writer_rank;
   const int reduced = reduce_sum_to_root(comm_, writer, sums);
-  if (reduced != MPI_SUCCESS ||
-      reduce_max_to_root(comm_, writer, std::span(&rss, 1)) != MPI_SUCCESS) {
+  if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
@@ -365,10 +358,10 @@ Status Adaptor::Impl::composite_and_submit() {
     }
     if (!is_writer()) continue;
     StepRecord& r = s.record;
-    r.tets = sums[4 * k];
-    r.kept_tets = sums[4 * k + 1];
-    r.skipped_tets = sums[4 * k + 2];
-    r.bvh_bytes = sums[4 * k + 3];
+    r.tets = sums[k].tets;
+    r.kept_tets = sums[k].kept_tets;
+    r.skipped_tets = sums[k].skipped_tets;
+    r.bvh_bytes = sums[k].bytes;
     r.peak_rss_bytes = rss;
     r.rays =
         static_cast<std::uint64_t>(s.image.pixel_count()) * static_cast<std::uint64_t>(comm_.size);

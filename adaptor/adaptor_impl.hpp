@@ -1,6 +1,6 @@
 // The adaptor behind the public API: per-scene triggers, one FieldVolume per isosurface field,
-// the render step of DESIGN §2 as a sequence of stages, and the writer thread on the writer rank
-// (output.writer_rank).
+// the render step of docs/architecture.md §2 as a sequence of stages, and the writer thread on the
+// writer rank (output.writer_rank).
 #pragma once
 
 #include <memory>
@@ -11,10 +11,11 @@
 #include "config.hpp"
 #include "field_volume.hpp"
 #include "image_writer.hpp"
-#include "render/trace/colormap.hpp"
-#include "render/core/framebuffer.hpp"
 #include "render/composite/global_reduce.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/colormap.hpp"
 #include "step_record.hpp"
+#include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 #include "trigger.hpp"
 
@@ -50,8 +51,8 @@ class Adaptor::Impl {
 
   static constexpr std::size_t kAnyVolume = ~std::size_t{0};
 
-  // The stages of a render step (DESIGN §2); each returns what went wrong on this rank, and
-  // render_step agrees on the outcome across ranks before every collective stage.
+  // The stages of a render step (docs/architecture.md §2); each returns what went wrong on this
+  // rank, and render_step agrees on the outcome across ranks before every collective stage.
   Status render_step(std::int64_t step, double time, const MeshView& mesh,
                      std::span<const FieldView> fields);
   Status validate(const MeshView& mesh, std::span<const FieldView> fields);
@@ -67,7 +68,7 @@ class Adaptor::Impl {
   bool is_writer() const { return comm_.rank == config_.output.writer_rank; }
   // The first due scene (of volume v); null when none is due.
   SceneState* first_due_scene(std::size_t v = kAnyVolume);
-  render::Camera camera_for(const SceneState& s, std::size_t first_range) const;
+  render::Camera camera_for(const SceneState& s, const SceneRanges& ranges) const;
   void print_progress(std::int64_t step, double time, double blocked_ms) const;
   Status take_writer_error();
 
@@ -77,7 +78,7 @@ class Adaptor::Impl {
   std::vector<FieldVolume> volumes_;
   std::vector<std::uint64_t> skipped_;  // per volume, at its last check
   ChangeEpochs epochs_{};
-  std::vector<render::ValueRange> ranges_;  // [failure, per scene: x, y, z, color]
+  StepRanges ranges_;
 
   // This step's connectivity as int64, and the int32 conversion and tie keys kept across steps
   // until the topology changes.

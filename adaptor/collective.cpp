@@ -1,5 +1,9 @@
 #include "collective.hpp"
 
+#include <vector>
+
+#include "render/composite/global_reduce.hpp"
+
 namespace tetray {
 namespace {
 
@@ -12,12 +16,15 @@ int reduce_to_root(const Communicator& c, int root, std::span<std::uint64_t> val
 
 }  // namespace
 
-int reduce_sum_to_root(const Communicator& c, int root, std::span<std::uint64_t> values) {
-  return reduce_to_root(c, root, values, MPI_SUM);
+int reduce_sum_to_root(const Communicator& c, int root, std::span<SceneCounters> counters) {
+  std::vector<std::uint64_t> packed = pack(counters);
+  const int rc = reduce_to_root(c, root, packed, MPI_SUM);
+  unpack(packed, counters);
+  return rc;
 }
 
-int reduce_max_to_root(const Communicator& c, int root, std::span<std::uint64_t> values) {
-  return reduce_to_root(c, root, values, MPI_MAX);
+int reduce_max_to_root(const Communicator& c, int root, std::uint64_t& value) {
+  return reduce_to_root(c, root, std::span(&value, 1), MPI_MAX);
 }
 
 int broadcast_status(const Communicator& c, int root, Status& status) {
@@ -29,15 +36,21 @@ int broadcast_status(const Communicator& c, int root, Status& status) {
   return MPI_Bcast(status.message.data(), static_cast<int>(head[1]), MPI_CHAR, root, c.comm);
 }
 
-Status agree(const Communicator& c, const Status& local, std::span<render::ValueRange> ranges) {
-  ranges[0] = {};
-  if (!local.ok()) ranges[0].include(c.rank);
+Status agree(const Communicator& c, const Status& local, StepRanges* ranges) {
   if (c.size == 1) return local;
-  if (int rc = render::global_ranges(ranges, c.comm); rc != MPI_SUCCESS) {
+  // The lowest failing rank, as the union of the failing ranks' numbers, travels first.
+  std::vector<render::ValueRange> packed(1);
+  if (!local.ok()) packed[0].include(c.rank);
+  if (ranges != nullptr) {
+    const std::vector<render::ValueRange> own = pack(*ranges);
+    packed.insert(packed.end(), own.begin(), own.end());
+  }
+  if (int rc = render::global_ranges(packed, c.comm); rc != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "agreeing on the step's outcome: " + mpi_error_text(rc)};
   }
-  if (ranges[0].empty()) return Status::success();
-  const int root = static_cast<int>(ranges[0].lo);
+  if (ranges != nullptr) unpack(std::span(packed).subspan(1), *ranges);
+  if (packed[0].empty()) return Status::success();
+  const int root = static_cast<int>(packed[0].lo);
   Status status = local;
   if (int rc = broadcast_status(c, root, status); rc != MPI_SUCCESS) {
     return {StatusCode::mpi_error,

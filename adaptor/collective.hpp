@@ -1,4 +1,4 @@
-// The few collective operations of the adaptor besides render/global_reduce and
+// The few collective operations of the adaptor besides render/composite/global_reduce and
 // render/composite. Each is a no-op on one rank.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "render/composite/global_reduce.hpp"
+#include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {
@@ -19,17 +19,17 @@ struct Communicator {
   int size = 1;
 };
 
-// Element-wise sum and maximum onto `root`, in place.
-int reduce_sum_to_root(const Communicator& c, int root, std::span<std::uint64_t> values);
-int reduce_max_to_root(const Communicator& c, int root, std::span<std::uint64_t> values);
+// Element-wise sums of the scenes' counters and the maximum of `value` onto `root`, in place.
+int reduce_sum_to_root(const Communicator& c, int root, std::span<SceneCounters> counters);
+int reduce_max_to_root(const Communicator& c, int root, std::uint64_t& value);
 
 // Copies `root`'s status to every rank.
 int broadcast_status(const Communicator& c, int root, Status& status);
 
-// Agrees on a stage's outcome and, in the same allreduce, on global unions of `ranges`
-// (ranges[0] is overwritten: it carries the failure flag). Every rank gets the status of the
-// lowest failing rank, prefixed with that rank, or success.
-Status agree(const Communicator& c, const Status& local, std::span<render::ValueRange> ranges);
+// Agrees on a stage's outcome and, in the same allreduce, on the global unions of `ranges` when
+// given. Every rank gets the status of the lowest failing rank, prefixed with that rank, or
+// success.
+Status agree(const Communicator& c, const Status& local, StepRanges* ranges = nullptr);
 
 std::string mpi_error_text(int code);
 

@@ -1,6 +1,6 @@
-// The adaptor's configuration after validation (DESIGN §4): everything the YAML can say, with
-// defaults filled in. Parsing and validation live in config_parse.cpp; nothing here touches
-// YAML, so the rest of the adaptor never sees a parse error.
+// The adaptor's configuration after validation (docs/architecture.md §4): everything the YAML can
+// say, with defaults filled in. Parsing and validation live in config_parse.cpp; nothing here
+// touches YAML, so the rest of the adaptor never sees a parse error.
 #pragma once
 
 #include <cstdint>
@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "render/trace/camera.hpp"
-#include "render/volume/mesh_check.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
+#include "render/volume/mesh_check.hpp"
 
 namespace tetray::config {
 

@@ -6,14 +6,11 @@
 #include <sstream>
 
 #include "render/trace/colormap.hpp"
+#include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
 
 namespace tetray::config {
 namespace {
-
-// Colors of successive isovalues when the config names none.
-constexpr render::Rgb kDefaultColors[] = {
-    {0.90f, 0.55f, 0.20f}, {0.25f, 0.55f, 0.85f}, {0.45f, 0.75f, 0.35f}, {0.80f, 0.30f, 0.45f}};
 
 render::Vec3d vec3(const YamlReader& r, const YAML::Node& node, std::string_view key) {
   const auto v = r.numbers(node, key, 3, 3);
@@ -175,7 +172,7 @@ void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::stri
   for (std::size_t i = 0; i < values.size(); ++i) {
     render::IsoSurface surface;
     surface.value = static_cast<float>(values[i]);
-    surface.color = kDefaultColors[i % std::size(kDefaultColors)];
+    surface.color = render::default_iso_color(i);
     if (colors) {
       const auto c = r.numbers(colors[i], item_key(child_key(key, "colors"), i), 3, 3);
       for (std::size_t a = 0; a < 3; ++a) {

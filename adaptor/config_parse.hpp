@@ -1,5 +1,5 @@
-// Reads and validates the whole adaptor config at create time (DESIGN §4): unknown keys, wrong
-// types and impossible values are errors that name the source, the line and the key.
+// Reads and validates the whole adaptor config at create time (docs/architecture.md §4): unknown
+// keys, wrong types and impossible values are errors that name the source, the line and the key.
 #pragma once
 
 #include <optional>

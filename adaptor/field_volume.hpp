@@ -1,5 +1,5 @@
-// One renderer volume and BVH per distinct isosurface field, kept across steps (seed 000 §6.2,
-// Schema II). It knows which changes it has already absorbed, so a step that changed nothing
+// One renderer volume and BVH per distinct isosurface field, kept across steps (Wald et al. 2007,
+// §6.2, Schema II). It knows which changes it has already absorbed, so a step that changed nothing
 // it reads costs nothing, and it reloads (rebuilds) only when the topology or the set of
 // rendered tets changed.
 #pragma once
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "render/bvh/bvh.hpp"
+#include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"
 #include "render/volume/tet_volume.hpp"
-#include "render/update/volume_update.hpp"
 
 namespace tetray {
 

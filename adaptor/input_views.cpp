@@ -108,17 +108,11 @@ std::string tie_keys(const TetsView& tets, std::vector<std::uint32_t>& keys) {
   return {};
 }
 
-void add_point_bounds(const PointsView& points, std::span<render::ValueRange> axes) {
+void add_point_bounds(const PointsView& points, render::BoundingBox& box) {
   const std::size_t n = 3 * points.count;
-  const render::BoundingBox box =
-      points.type == ScalarType::float32
-          ? render::local_bounds(std::span(static_cast<const float*>(points.xyz), n))
-          : render::local_bounds(std::span(static_cast<const double*>(points.xyz), n));
-  for (int a = 0; a < 3; ++a) {
-    if (box.axis[a].empty()) continue;
-    axes[a].include(box.axis[a].lo);
-    axes[a].include(box.axis[a].hi);
-  }
+  box.merge(points.type == ScalarType::float32
+                ? render::local_bounds(std::span(static_cast<const float*>(points.xyz), n))
+                : render::local_bounds(std::span(static_cast<const double*>(points.xyz), n)));
 }
 
 void drop_ghost_tets(const std::uint8_t* ghost, std::vector<std::uint8_t>& keep) {

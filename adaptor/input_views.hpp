@@ -39,8 +39,8 @@ std::span<const std::int64_t> connectivity_int64(const TetsView& tets,
 // error when an id does not fit.
 std::string tie_keys(const TetsView& tets, std::vector<std::uint32_t>& keys);
 
-// Widens axes[0..2] by the bounding box of the (reference) point coordinates.
-void add_point_bounds(const PointsView& points, std::span<render::ValueRange> axes);
+// Widens `box` by the bounding box of the (reference) point coordinates.
+void add_point_bounds(const PointsView& points, render::BoundingBox& box);
 
 // Clears keep[t] for VTK ghost tets (DUPLICATECELL 1, HIDDENCELL 32).
 void drop_ghost_tets(const std::uint8_t* ghost, std::vector<std::uint8_t>& keep);

@@ -9,8 +9,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "render/image/image_write.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/image/image_write.hpp"
 
 namespace tetray {
 namespace {

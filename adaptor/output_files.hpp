@@ -1,6 +1,7 @@
-// The files of DESIGN §3 on the writer rank: images `<dir>/<scene>/<scene>_<step>.exr|png`
-// (written atomically by render/image_write), the Cinema database `<dir>/<scene>.cdb/data.csv`
-// and the timing log `<dir>/tetray_log.csv`; with per_rank_images, every rank's own image
+// The files of docs/architecture.md §3 on the writer rank: images
+// `<dir>/<scene>/<scene>_<step>.exr|png` (written atomically by render/image), the Cinema
+// database `<dir>/<scene>.cdb/data.csv` and the timing log `<dir>/tetray_log.csv`; with
+// per_rank_images, every rank's own image
 // `<dir>/<scene>/ranks/<scene>_<step>_rank<rank>.png`. Every function returns an error message
 // (empty on success); a failed append leaves the file as it was, so nothing already written is
 // damaged.

@@ -1,5 +1,5 @@
-// What one scene's render at one step did: the row of tetray_log.csv (DESIGN §3). Stages that
-// did not run for this scene report 0 ms, so the log shows what a scene did not need.
+// What one scene's render at one step did: the row of tetray_log.csv (docs/architecture.md §3).
+// Stages that did not run for this scene report 0 ms, so the log shows what a scene did not need.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,7 @@ struct StepRecord {
   double check_ms = 0;              // validation of indices and values
   double ingest_ms = 0;             // adaptor-side conversion (connectivity, tie keys, keep mask)
   double bvh_ms = 0;                // fused ingest + refit, or rebuild
-  std::string bvh_update = "none";  // none, field_only, refit, rebuild
+  std::string bvh_update = "none";  // none, field_refit, refit, rebuild
   double color_ms = 0;              // color field conversion and range (0 without color_by)
   double trace_ms = 0;
   double composite_ms = 0;         // 0 on one rank

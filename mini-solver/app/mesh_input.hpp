@@ -1,6 +1,6 @@
-// The global mesh a run starts from: the DESIGN §6 box through tetray::make_box_mesh (the public
-// generator any solver may use), or the mini-solver's own beam and shell generators; the tets of
-// the stiff region, if any, are material 1.
+// The global mesh a run starts from: the docs/architecture.md §6 box through tetray::make_box_mesh
+// (the benchmark's scene generator, tools/scenes), or the mini-solver's own beam and shell
+// generators; the tets of the stiff region, if any, are material 1.
 #pragma once
 
 #include "minisolver/solver_config.hpp"

@@ -1,6 +1,7 @@
 // Tet meshes for the mini-solver: structured grids of hexahedra, mapped to a shape (a beam, a
-// thick spherical shell sector) and cut into six Kuhn tets each. The box of DESIGN §6 comes from
-// tetray::make_box_mesh in the executable; this library only needs the Mesh type to hold it.
+// thick spherical shell sector) and cut into six Kuhn tets each. The box of docs/architecture.md §6
+// comes from tetray::make_box_mesh in the executable; this library only needs the Mesh type to hold
+// it.
 #pragma once
 
 #include <array>

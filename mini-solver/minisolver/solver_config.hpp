@@ -22,7 +22,7 @@ struct MeshConfig {
   std::array<int, 3> cells{24, 6, 6};
   Vec3 lo{0, 0, 0};
   Vec3 hi{4, 1, 1};
-  double jitter = 0;  // box only, fraction of the cell size (DESIGN §6 uses 0.15)
+  double jitter = 0;  // box only, fraction of the cell size (docs/architecture.md §6 uses 0.15)
   ShellSpec shell;
 };
 

@@ -1,5 +1,5 @@
-// The implicit 4D min/max BVH of seed 000 §5: every node bounds x, y, z and the scalar range
-// of the tets below it, so a subtree whose range misses every isovalue is culled before any
+// The implicit 4D min/max BVH of Wald et al. 2007, §5: every node bounds x, y, z and the scalar
+// range of the tets below it, so a subtree whose range misses every isovalue is culled before any
 // geometric test. Children of an inner node are stored next to each other; a leaf holds a
 // contiguous range of TetVolume::tets (the build reorders the tets into leaf order).
 #pragma once
@@ -34,8 +34,8 @@ struct BvhBuildOptions {
 
 struct Bvh {
   std::vector<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
-  // Subtrees recorded at build time for parallel refit (seed 000 §6.2): each subtree's root
-  // sits among the top nodes, the rest of it in nodes [begin, end), children after parents.
+  // Subtrees recorded at build time for parallel refit (Wald et al. 2007, §6.2): each subtree's
+  // root sits among the top nodes, the rest of it in nodes [begin, end), children after parents.
   struct Subtree {
     std::uint32_t root, begin, end;
   };

@@ -1,9 +1,9 @@
-// BVH construction (seed 000 §5.1): a BIH-style spatial-median build (no cost function, so it
-// is fast) and a binned-SAH build, both partitioning tets by centroid. The top levels are split
+// BVH construction (Wald et al. 2007, §5.1) with the split the options name (bih_split.cpp or
+// sah_split.cpp), both partitioning tets by centroid. The top levels are split
 // breadth-first, in parallel across the nodes of a level, down to a fixed number of subtrees;
 // the subtrees are then built in parallel and laid out one after the other. Every decision
 // depends only on the data, so the tree is the same for any thread count, and the subtrees are
-// exactly the units of the parallel refit (seed 000 §6.2).
+// exactly the units of the parallel refit (Wald et al. 2007, §6.2).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -12,183 +12,24 @@
 #include <array>
 #include <numeric>
 
-#include "render/bvh/bounds.hpp"
-#include "render/bvh/bvh.hpp"
+#include "render/bvh/bvh_split.hpp"
 #include "render/bvh/leaf_vertices.hpp"
 #include "render/bvh/vertex_order.hpp"
 
 namespace tetray::render {
 namespace {
 
-constexpr int kSahBins = 16;
-constexpr int kMaxSpatialRetries = 32;
-constexpr int kObjectMedianDepth = 48;  // below this depth split by count: depth stays bounded
+using build::BuildContext;
+using build::BuildItem;
+using build::Range;
+
 constexpr std::uint32_t kTargetSubtrees = 64;
-constexpr std::uint32_t kParallelGrain = 16384;  // ranges below this are scanned by one thread
-
-struct Range {
-  std::uint32_t begin, end;
-  Box3 box;  // BIH: the spatial interval being split; unused by SAH
-  int depth;
-  std::uint32_t size() const { return end - begin; }
-};
-
-// A tet as the partitions move it: its centroid travels with it, so partitioning reads and
-// writes memory in order instead of gathering centroids by index.
-struct BuildItem {
-  Vec3f centroid;
-  std::uint32_t tet;
-};
-
-struct BuildContext {
-  const BvhBuildOptions& options;
-  std::vector<BuildItem> items;    // tets in build order
-  std::vector<Bounds4> tet_boxes;  // SAH only, by tet
-};
-
-Box3 centroid_bounds(const BuildContext& ctx, std::uint32_t begin, std::uint32_t end) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::uint32_t>(begin, end, kParallelGrain), Box3{},
-      [&](const auto& block, Box3 box) {
-        for (std::uint32_t i = block.begin(); i < block.end(); ++i) box.grow(ctx.items[i].centroid);
-        return box;
-      },
-      [](Box3 a, const Box3& b) {
-        a.grow(b);
-        return a;
-      });
-}
-
-// Halving split by position in the order array: always makes progress.
-std::uint32_t split_object_median(const Range& r, Range& left, Range& right) {
-  const std::uint32_t mid = r.begin + r.size() / 2;
-  left = {r.begin, mid, r.box, r.depth + 1};
-  right = {mid, r.end, r.box, r.depth + 1};
-  return mid;
-}
-
-std::uint32_t partition_by(BuildContext& ctx, const Range& r, auto&& goes_left) {
-  auto* first = ctx.items.data() + r.begin;
-  auto* middle = std::partition(first, ctx.items.data() + r.end, goes_left);
-  return r.begin + static_cast<std::uint32_t>(middle - first);
-}
-
-// BIH-style: halve the spatial interval along its longest axis; when every centroid falls on
-// one side, keep halving that side's interval.
-std::uint32_t split_bih(BuildContext& ctx, const Range& r, Range& left, Range& right) {
-  Box3 box = r.box;
-  for (int attempt = 0; attempt < kMaxSpatialRetries && r.depth < kObjectMedianDepth; ++attempt) {
-    const int axis = box.longest_axis();
-    const float mid = 0.5f * (box.lo[axis] + box.hi[axis]);
-    const std::uint32_t m =
-        partition_by(ctx, r, [&](const BuildItem& item) { return item.centroid[axis] < mid; });
-    if (m != r.begin && m != r.end) {
-      left = {r.begin, m, box, r.depth + 1};
-      right = {m, r.end, box, r.depth + 1};
-      left.box.hi[axis] = mid;
-      right.box.lo[axis] = mid;
-      return m;
-    }
-    (m == r.begin ? box.lo : box.hi)[axis] = mid;
-  }
-  return split_object_median(r, left, right);
-}
-
-struct Bin {
-  Bounds4Builder box;
-  std::uint32_t count = 0;
-};
-
-// Half the surface area of the tets binned so far (zero while none are).
-float binned_area(const Bounds4Builder& box, std::uint32_t count) {
-  return count ? box.half_area() : 0.0f;
-}
-using AxisBins = std::array<std::array<Bin, kSahBins>, 3>;
-
-// The bins of all three axes in one pass over the range, in parallel for the large ranges of
-// the top levels (bins merge by exact min, max and sums, so the result is the same however the
-// range is cut).
-AxisBins bin_centroids(const BuildContext& ctx, const Range& r, const Box3& cb) {
-  float scale[3];
-  for (int a = 0; a < 3; ++a) {
-    const float extent = cb.hi[a] - cb.lo[a];
-    scale[a] = extent > 0 ? kSahBins / extent : 0.0f;
-  }
-  auto fill = [&](std::uint32_t begin, std::uint32_t end, AxisBins& bins) {
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const BuildItem& item = ctx.items[i];
-      const Bounds4& box = ctx.tet_boxes[item.tet];
-      for (int a = 0; a < 3; ++a) {
-        const int b =
-            std::min(kSahBins - 1, static_cast<int>((item.centroid[a] - cb.lo[a]) * scale[a]));
-        bins[a][b].box.grow(box);
-        ++bins[a][b].count;
-      }
-    }
-  };
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::uint32_t>(r.begin, r.end, kParallelGrain), AxisBins{},
-      [&](const auto& block, AxisBins bins) {
-        fill(block.begin(), block.end(), bins);
-        return bins;
-      },
-      [](AxisBins a, const AxisBins& b) {
-        for (int axis = 0; axis < 3; ++axis)
-          for (int k = 0; k < kSahBins; ++k) {
-            a[axis][k].box.grow(b[axis][k].box.bounds());
-            a[axis][k].count += b[axis][k].count;
-          }
-        return a;
-      });
-}
-
-// Binned SAH: the split plane between bins with the lowest area-weighted count.
-std::uint32_t split_sah(BuildContext& ctx, const Range& r, Range& left, Range& right) {
-  const Box3 cb = centroid_bounds(ctx, r.begin, r.end);
-  if (r.depth >= kObjectMedianDepth) return split_object_median(r, left, right);
-  const AxisBins all_bins = bin_centroids(ctx, r, cb);
-  float best_cost = std::numeric_limits<float>::infinity();
-  int best_axis = -1, best_bin = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!(cb.hi[axis] - cb.lo[axis] > 0)) continue;
-    const auto& bins = all_bins[axis];
-    float right_cost[kSahBins];
-    Bounds4Builder acc;
-    std::uint32_t n = 0;
-    for (int b = kSahBins - 1; b > 0; --b) {
-      acc.grow(bins[b].box.bounds());
-      n += bins[b].count;
-      right_cost[b] = binned_area(acc, n) * static_cast<float>(n);
-    }
-    acc = Bounds4Builder{};
-    n = 0;
-    for (int b = 0; b < kSahBins - 1; ++b) {
-      acc.grow(bins[b].box.bounds());
-      n += bins[b].count;
-      const float cost = binned_area(acc, n) * static_cast<float>(n) + right_cost[b + 1];
-      if (n > 0 && n < r.size() && cost < best_cost) {
-        best_cost = cost;
-        best_axis = axis;
-        best_bin = b;
-      }
-    }
-  }
-  if (best_axis < 0) return split_object_median(r, left, right);
-  const float scale = kSahBins / (cb.hi[best_axis] - cb.lo[best_axis]);
-  const std::uint32_t m = partition_by(ctx, r, [&](const BuildItem& item) {
-    const float c = (item.centroid[best_axis] - cb.lo[best_axis]) * scale;
-    return std::min(kSahBins - 1, static_cast<int>(c)) <= best_bin;
-  });
-  left = {r.begin, m, r.box, r.depth + 1};
-  right = {m, r.end, r.box, r.depth + 1};
-  return m;
-}
 
 void split(BuildContext& ctx, const Range& r, Range& left, Range& right) {
   if (ctx.options.builder == BvhBuilder::sah) {
-    split_sah(ctx, r, left, right);
+    build::split_sah(ctx, r, left, right);
   } else {
-    split_bih(ctx, r, left, right);
+    build::split_bih(ctx, r, left, right);
   }
 }
 
@@ -244,7 +85,7 @@ std::vector<Pending> build_top(BuildContext& ctx, std::vector<BvhNode>& top,
   const auto n = static_cast<std::uint32_t>(ctx.items.size());
   const std::uint32_t subtree_size = std::max<std::uint32_t>(
       static_cast<std::uint32_t>(std::max(1, ctx.options.leaf_size)), n / kTargetSubtrees);
-  std::vector<Pending> level{{0, Range{0, n, centroid_bounds(ctx, 0, n), 0}}}, subtrees;
+  std::vector<Pending> level{{0, Range{0, n, build::centroid_bounds(ctx, 0, n), 0}}}, subtrees;
   top.resize(1);
   while (!level.empty()) {
     std::vector<Pending> to_split;

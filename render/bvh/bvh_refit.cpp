@@ -1,4 +1,4 @@
-// Refitting the implicit BVH for a new time step (seed 000 §6.2, Schema II): the recorded
+// Refitting the implicit BVH for a new time step (Wald et al. 2007, §6.2, Schema II): the recorded
 // subtrees are refit in parallel, children before parents, then the few top nodes. A leaf's
 // bound is that of its distinct vertices (leaf_vertices.hpp), read once each instead of once
 // per tet corner. Field-only refits touch only the scalar ranges. The SAH cost of the refit tree,

@@ -1,6 +1,6 @@
 // Vertex renumbering after a build: vertices in the order the leaf-ordered tets first use
 // them, so that the tets of a leaf, and of neighbouring leaves, read neighbouring vertices
-// (seed 001's reordering for locality, here along the BVH's own leaf order).
+// (Aman et al. 2022's reordering for locality, here along the BVH's own leaf order).
 #pragma once
 
 #include "render/bvh/bvh.hpp"

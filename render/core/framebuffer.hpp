@@ -1,5 +1,5 @@
-// RGBA + depth image of DESIGN §3, plus the id of the primitive hit per pixel, which makes
-// depth compositing deterministic (ties in depth go to the smaller id).
+// RGBA + depth image of docs/architecture.md §3, plus the id of the primitive hit per pixel, which
+// makes depth compositing deterministic (ties in depth go to the smaller id).
 #pragma once
 
 #include <cstddef>

@@ -1,7 +1,7 @@
-// One SIMD vocabulary for the kernels (DESIGN §7): the few operations they need, over xsimd's
-// widest float batch for the build target (AVX-512 where the CPU has it) and over plain float
-// for the single-ray path. Both spellings do the same IEEE operations (no fused multiply-add),
-// so a pixel gets bitwise the same result whatever the packet size.
+// One SIMD vocabulary for the kernels (docs/architecture.md §7): the few operations they need, over
+// xsimd's widest float batch for the build target (AVX-512 where the CPU has it) and over plain
+// float for the single-ray path. Both spellings do the same IEEE operations (no fused
+// multiply-add), so a pixel gets bitwise the same result whatever the packet size.
 #pragma once
 
 #include <xsimd/xsimd.hpp>
@@ -21,7 +21,7 @@ using Ints = xsimd::batch<std::int32_t>;
 inline constexpr int kWidth = static_cast<int>(Floats::size);
 
 // Four floats in one register: a Vertex (x, y, z, f) or one side of a 4D bound, so a bound
-// grows by one min and one max per vertex (seed 000 §6.2).
+// grows by one min and one max per vertex (Wald et al. 2007, §6.2).
 using Float4 = xsimd::make_sized_batch_t<float, 4>;
 
 using Mask4 = Float4::batch_bool_type;

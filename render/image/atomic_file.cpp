@@ -1,5 +1,5 @@
-// Atomic file replacement (DESIGN §3): the bytes go to a fresh temporary file in the target's
-// directory and are renamed over the target only once completely written and closed, so a
+// Atomic file replacement (docs/architecture.md §3): the bytes go to a fresh temporary file in the
+// target's directory and are renamed over the target only once completely written and closed, so a
 // killed job or a full disk never leaves a torn or truncated image behind.
 #include <fcntl.h>
 #include <unistd.h>

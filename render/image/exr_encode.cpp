@@ -1,6 +1,6 @@
-// EXR encoding of DESIGN §3: R, G, B, A as half (linear, premultiplied: EXR's own convention)
-// and Z as float (view-axis depth, +inf for background), scanline, ZIP. Encoded into memory so
-// that the file itself is written atomically by write_file_atomically.
+// EXR encoding of docs/architecture.md §3: R, G, B, A as half (linear, premultiplied: EXR's own
+// convention) and Z as float (view-axis depth, +inf for background), scanline, ZIP. Encoded into
+// memory so that the file itself is written atomically by write_file_atomically.
 #include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -1,4 +1,4 @@
-// The image files of DESIGN §3: encode in memory, then replace the file atomically.
+// The image files of docs/architecture.md §3: encode in memory, then replace the file atomically.
 #include "render/image/image_write.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// Image files of DESIGN §3, written atomically (temporary file in the same directory, then
-// rename) so that a killed job never leaves a torn image.
+// Image files of docs/architecture.md §3, written atomically (temporary file in the same directory,
+// then rename) so that a killed job never leaves a torn image.
 #pragma once
 
 #include <optional>

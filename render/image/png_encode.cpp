@@ -1,6 +1,6 @@
-// PNG encoding of DESIGN §3: 8-bit sRGB RGBA with straight alpha. The framebuffer holds linear,
-// premultiplied color, so each pixel is un-premultiplied, then passed through the sRGB transfer
-// function (IEC 61966-2-1) and rounded to the nearest 8-bit code.
+// PNG encoding of docs/architecture.md §3: 8-bit sRGB RGBA with straight alpha. The framebuffer
+// holds linear, premultiplied color, so each pixel is un-premultiplied, then passed through the
+// sRGB transfer function (IEC 61966-2-1) and rounded to the nearest 8-bit code.
 #include <png.h>
 
 #include <algorithm>
@@ -11,9 +11,9 @@
 #include <cstdio>
 #include <new>
 
+#include "render/core/srgb.hpp"
 #include "render/image/image_check.hpp"
 #include "render/image/image_write.hpp"
-#include "render/core/srgb.hpp"
 
 namespace tetray::render {
 namespace {

@@ -1,5 +1,6 @@
-// The pinhole camera of DESIGN.md §3. Every part of tetray (tracer, reference intersector,
-// benchmark references, tests) generates its rays here, so all of them agree on a pixel's ray.
+// The pinhole camera of docs/architecture.md §3. Every part of tetray (tracer, reference
+// intersector, benchmark references, tests) generates its rays here, so all of them agree on a
+// pixel's ray.
 #pragma once
 
 #include <vector>
@@ -47,7 +48,7 @@ struct PixelDirections {
   PixelDirections(const CameraFrame& frame, const Camera& camera);
 };
 
-// Depth of DESIGN §3: distance along the view axis.
+// Depth of docs/architecture.md §3: distance along the view axis.
 inline double view_depth(const CameraFrame& frame, Vec3d hit) {
   return dot(hit - frame.eye, frame.forward);
 }

@@ -1,5 +1,6 @@
-// Default colors of isosurfaces that have none of their own (tetray-render, config scenes
-// without `colors:`): kMaxIsovalues colors that stay distinguishable next to each other.
+// Default colors of isosurfaces that have none of their own, the one palette of tetray-render and
+// of config scenes without `colors:`: kMaxIsovalues colors that stay distinguishable next to each
+// other.
 #pragma once
 
 #include <cstddef>

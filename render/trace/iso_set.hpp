@@ -1,6 +1,6 @@
 // The isovalues of a frame, sorted, and the sign rule's crossing test against a value range
-// (DESIGN §3: a value at or above the isovalue counts as above), for one range (a BVH node's)
-// or a batch of ranges (a leaf's tets).
+// (docs/architecture.md §3: a value at or above the isovalue counts as above), for one range (a BVH
+// node's) or a batch of ranges (a leaf's tets).
 #pragma once
 
 #include "render/core/simd.hpp"

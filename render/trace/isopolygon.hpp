@@ -1,6 +1,7 @@
-// Isopolygons (seed 000 §4.1): the plane of a linear tet's isosurface bounded by its edges,
-// found by the 16-case marching-tetrahedra table. A vertex with f >= iso counts as above
-// (DESIGN §3), which makes every case well defined, values equal to the isovalue included.
+// Isopolygons (Wald et al. 2007, §4.1): the plane of a linear tet's isosurface bounded by its
+// edges, found by the 16-case marching-tetrahedra table. A vertex with f >= iso counts as above
+// (docs/architecture.md §3), which makes every case well defined, values equal to the isovalue
+// included.
 #pragma once
 
 #include <algorithm>
@@ -8,8 +9,8 @@
 #include <cstdint>
 
 #include "render/core/simd.hpp"
-#include "render/volume/tet_volume.hpp"
 #include "render/core/vec.hpp"
+#include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
 

@@ -1,4 +1,4 @@
-// Packet-isopolygon intersection (seed 000 §4.2-4.3). Each isopolygon edge, seen from the
+// Packet-isopolygon intersection (Wald et al. 2007, §4.2-4.3). Each isopolygon edge, seen from the
 // eye, spans a plane through the eye; a ray is inside the polygon's projection when it lies on
 // the inner side of every such plane, a 2D half-space test per edge in the image plane.
 //

@@ -1,15 +1,15 @@
-// The bounding frustum of a packet of primary rays (seed 000 §4.3): the four planes through
-// the eye and the packet's corner rays. Primary rays share their origin and fill a rectangle of
-// the image, so this frustum is exact up to a small slack, where the interval-arithmetic test
-// of seed 000 §5.2 III bounds the rays' directions by a box (the form shadow rays, which have
-// no corner rays, will need). It rejects a tet from its four vertices: most tets a packet's
-// traversal reaches lie beside the packet, their bounding boxes overlapping its frustum but
-// their hulls not, and each rejection saves an isopolygon extraction.
+// The bounding frustum of a packet of primary rays (Wald et al. 2007, §4.3): the four planes
+// through the eye and the packet's corner rays. Primary rays share their origin and fill a
+// rectangle of the image, so this frustum is exact up to a small slack, where the
+// interval-arithmetic test of Wald et al. 2007, §5.2 III bounds the rays' directions by a box (the
+// form shadow rays, which have no corner rays, will need). It rejects a tet from its four vertices:
+// most tets a packet's traversal reaches lie beside the packet, their bounding boxes overlapping
+// its frustum but their hulls not, and each rejection saves an isopolygon extraction.
 #pragma once
 
-#include "render/trace/camera.hpp"
 #include "render/core/simd.hpp"
 #include "render/core/vec.hpp"
+#include "render/trace/camera.hpp"
 
 namespace tetray::render {
 
@@ -18,7 +18,7 @@ struct PacketFrustum {
   // n_k . (p - eye) >= -slack_k, and the frustum is the intersection of the four (which holds
   // nothing behind the eye).
   alignas(16) float nx[4], ny[4], nz[4], slack[4];
-  Vec3f forward;            // the view axis, for depth (DESIGN §3)
+  Vec3f forward;            // the view axis, for depth (docs/architecture.md §3)
   float forward_slack = 0;  // rounding bound of a depth computed from eye-relative floats
 
   // Whether no ray of the packet can meet the convex hull of four points given relative to the

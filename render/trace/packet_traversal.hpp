@@ -1,5 +1,6 @@
-// Packet traversal of the implicit BVH (seed 000 §5.2), written once and templated on the
-// packet size and on what a leaf does (DESIGN §7), in the order the seed gives:
+// Packet traversal of the implicit BVH (Wald et al. 2007, §5.2), written once and templated on the
+// packet size and on what a leaf does (docs/architecture.md §7), in the order Wald et al. 2007
+// give:
 //   I   implicit culling: a node whose scalar range straddles no isovalue is skipped, and a node
 //       with one active child descends into it without any geometric test;
 //   II  speculative first-active descent: if the first active ray hits the node, descend;

@@ -1,6 +1,6 @@
-// A packet of S x S primary rays sharing the eye (seed 000 §3: 16 x 16 by default), stored as
-// structure of arrays for the SIMD kernels, with the interval bounds of its directions (the
-// node test of seed 000 §5.2 III) and its corner-ray frustum (§4.3, packet_frustum.hpp: the tet
+// A packet of S x S primary rays sharing the eye (Wald et al. 2007, §3: 16 x 16 by default), stored
+// as structure of arrays for the SIMD kernels, with the interval bounds of its directions (the node
+// test of Wald et al. 2007, §5.2 III) and its corner-ray frustum (§4.3, packet_frustum.hpp: the tet
 // and isopolygon tests). Rays of a packet that fall off the image repeat a pixel at the edge (so
 // the frustum stays tight) and start with tmax = -inf, so they hit nothing.
 #pragma once
@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "render/trace/camera.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/packet_frustum.hpp"
 #include "render/core/simd.hpp"
+#include "render/trace/camera.hpp"
+#include "render/trace/packet_frustum.hpp"
 
 namespace tetray::render {
 

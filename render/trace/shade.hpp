@@ -1,5 +1,5 @@
-// Shading of primary hits (DESIGN §3): two-sided Lambert with a headlight, the color per
-// isovalue or, with color_by, a colormap of a second field interpolated at the hit.
+// Shading of primary hits (docs/architecture.md §3): two-sided Lambert with a headlight, the color
+// per isovalue or, with color_by, a colormap of a second field interpolated at the hit.
 #pragma once
 
 #include "render/trace/camera.hpp"

@@ -1,5 +1,5 @@
-// Which tets of a leaf hold a piece of some isosurface, a batch at a time (seed 000 §5.2 V: a
-// tet's own range is tested before anything else about it). Most tets of a leaf hold none; one
+// Which tets of a leaf hold a piece of some isosurface, a batch at a time (Wald et al. 2007, §5.2
+// V: a tet's own range is tested before anything else about it). Most tets of a leaf hold none; one
 // by one, each cost a branch that went either way at random and four scalar loads; here the
 // batch's corner indices are moved into lanes, their values gathered, and tested together.
 #pragma once
@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "render/trace/iso_set.hpp"
 #include "render/core/simd.hpp"
+#include "render/trace/iso_set.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {

@@ -1,5 +1,5 @@
 // Frame driver: splits the image into 32 x 32 blocks traced in parallel, each as packets of
-// the chosen size; the leaf operation intersects on-the-fly isopolygons (seed 000 §4.4: no
+// the chosen size; the leaf operation intersects on-the-fly isopolygons (Wald et al. 2007, §4.4: no
 // cache) of every tet whose own range straddles an isovalue (§5.2 V).
 #include "render/trace/trace.hpp"
 

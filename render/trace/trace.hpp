@@ -1,5 +1,5 @@
-// Ray tracing isosurfaces directly on the tets (seed 000 §3-5): packets of rays traverse the
-// implicit BVH with iso-range culling, first-active speculative descent and interval-arithmetic
+// Ray tracing isosurfaces directly on the tets (Wald et al. 2007, §3-5): packets of rays traverse
+// the implicit BVH with iso-range culling, first-active speculative descent and interval-arithmetic
 // frustum culling; leaves intersect on-the-fly isopolygons.
 #pragma once
 
@@ -8,9 +8,9 @@
 #include <span>
 
 #include "render/bvh/bvh.hpp"
+#include "render/core/framebuffer.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/colormap.hpp"
-#include "render/core/framebuffer.hpp"
 #include "render/trace/iso_set.hpp"
 #include "render/volume/tet_volume.hpp"
 
@@ -25,8 +25,9 @@ struct IsoSurface {
   Rgb color{};
 };
 
-// Rays traced together (seed 000 §3): single rays, or square packets. Every size gives bitwise
-// the same image; larger packets share more of the traversal and of each isopolygon's set-up.
+// Rays traced together (Wald et al. 2007, §3): single rays, or square packets. Every size gives
+// bitwise the same image; larger packets share more of the traversal and of each isopolygon's
+// set-up.
 enum class PacketSize { single, p8x8, p16x16, p32x32 };
 inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
                                             PacketSize::p16x16, PacketSize::p32x32};
@@ -34,7 +35,7 @@ inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8
 // "1", "8x8", "16x16", "32x32".
 const char* to_string(PacketSize packet);
 
-// Seed 000 Table 4 counters, per frame.
+// The counters of Wald et al. 2007, Table 4, per frame.
 struct TraceStats {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;

@@ -1,7 +1,7 @@
-// Schema I of seed 000 §6.1: a BVH and vertex store kept per time step, so that a short series
-// can be replayed (re-rendered with another camera or isovalue) without refitting. It costs a
-// full copy per step, so it holds at most `budget_bytes` and reports what it uses; the default
-// in situ path is Schema II (one BVH, refit per step).
+// Schema I of Wald et al. 2007, §6.1: a BVH and vertex store kept per time step, so that a short
+// series can be replayed (re-rendered with another camera or isovalue) without refitting. It costs
+// a full copy per step, so it holds at most `budget_bytes` and reports what it uses; the default in
+// situ path is Schema II (one BVH, refit per step).
 #pragma once
 
 #include <cstddef>

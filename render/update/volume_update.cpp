@@ -8,8 +8,8 @@
 #include <limits>
 
 #include "render/core/stopwatch.hpp"
-#include "render/volume/point_read.hpp"
 #include "render/core/value_bounds.hpp"
+#include "render/volume/point_read.hpp"
 
 namespace tetray::render {
 namespace {

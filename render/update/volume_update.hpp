@@ -1,7 +1,8 @@
-// Bringing a new time step into the renderer (seed 000 §6.2, Schema II): one BVH per rank kept
-// across steps. New point data is converted into the vertex store and the BVH refit in the same
-// pass where possible (fused ingest, so each byte is read once); field-only changes touch only
-// the scalar ranges; a topology change or a quality loss past the threshold rebuilds.
+// Bringing a new time step into the renderer (Wald et al. 2007, §6.2, Schema II): one BVH per rank
+// kept across steps. New coordinates, displacements and field values are converted into the vertex
+// store in one pass over the solver's arrays (fused ingest), then the BVH is refit from the store;
+// field-only changes touch only the scalar ranges; a topology change or a quality loss past the
+// threshold rebuilds.
 #pragma once
 
 #include <cstddef>

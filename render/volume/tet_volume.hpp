@@ -1,8 +1,8 @@
 // The renderer's own copy of one rank's tets: vertices as (x, y, z, f) floats relative to a
 // double-precision local origin (meshes far from the origin keep float precision), and tets as
 // 4 x int32 vertex indices. After a BVH build the tets are stored in leaf order, so a leaf is a
-// contiguous range, and the vertices in the order the leaves first use them (seed 001's point:
-// neighbours in the tree are neighbours in memory), keeping only vertices some tet uses.
+// contiguous range, and the vertices in the order the leaves first use them (Aman et al. 2022's
+// point: neighbours in the tree are neighbours in memory), keeping only vertices some tet uses.
 // `tet_ids` keeps each tet's id in the caller's numbering (the deterministic tie rule) and
 // `point_vertex` the vertex each of the caller's points became (empty: the same index), so a
 // new step's arrays are read in the caller's order and scattered into the store.

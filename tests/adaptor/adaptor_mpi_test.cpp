@@ -9,9 +9,9 @@
 #include <fstream>
 #include <set>
 
-#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
 #include "support/png_read.hpp"
+#include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray::testing {

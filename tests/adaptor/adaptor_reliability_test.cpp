@@ -1,5 +1,5 @@
 // Bad input, bad configs and failing disks: each gives a clear status, the next execute still
-// works, and nothing already written is damaged (issue 5, reliability).
+// works, and nothing already written is damaged.
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 
@@ -7,8 +7,8 @@
 #include <fstream>
 #include <limits>
 
-#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
+#include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray::testing {

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <limits>
 
-#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
+#include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray::testing {

@@ -11,8 +11,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
-#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
+#include "support/scratch_dir.hpp"
 #include "tetray/vtk_bridge.hpp"
 
 namespace tetray::testing {

@@ -1,6 +1,6 @@
 # The ctest command of one tetray-minisolver run (tests/solver/CMakeLists.txt passes the -D
 # values): runs it under mpirun, checks its exit code and output, and, for a run that should
-# succeed, every file DESIGN §3 says it owes, for each scene of the config and each step the
+# succeed, every file docs/architecture.md §3 says it owes, for each scene of the config and each step the
 # trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
 # else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv.
 # A refused run must write no image. Every failed check is listed, then the test fails.

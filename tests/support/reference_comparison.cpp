@@ -30,7 +30,7 @@ bool pixel_malformed(const render::Framebuffer& image, std::size_t p) {
   return !std::isfinite(depth) || rgba[3] != 1;
 }
 
-// Lambert headlight of DESIGN §3 with the default ambient term.
+// Lambert headlight of docs/architecture.md §3 with the default ambient term.
 bool shade_matches(const float* rgba, const render::Rgb& color, double abs_cos) {
   const double ambient = render::TraceOptions{}.ambient;
   const double light = ambient + (1 - ambient) * abs_cos;

@@ -1,6 +1,6 @@
 // Pixel-by-pixel comparison of a tetray framebuffer with the reference intersector, under the
-// tolerances of issue 3: hit/miss agrees except for grazing rays, depth within 1e-5 relative
-// (or float rounding of positions where that is larger: near the eye, at glancing angles).
+// tolerances of the correctness tests: hit/miss agrees except for grazing rays, depth within 1e-5
+// relative (or float rounding of positions where that is larger: near the eye, at glancing angles).
 #pragma once
 
 #include <cstddef>
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "support/reference_intersector.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/trace.hpp"
+#include "support/reference_intersector.hpp"
 #include "support/render_fixtures.hpp"
 
 namespace tetray::test {

@@ -8,9 +8,9 @@
 #include <limits>
 #include <vector>
 
-#include "support/reference_tet.hpp"
 #include "render/trace/camera.hpp"
 #include "render/volume/tet_volume.hpp"
+#include "support/reference_tet.hpp"
 
 namespace tetray::test {
 
@@ -23,7 +23,7 @@ struct ReferenceHit {
 
   bool hit = false;
   double t = kNone;      // ray parameter (unit direction) of the nearest hit
-  double depth = kNone;  // view-axis depth of DESIGN §3
+  double depth = kNone;  // view-axis depth of docs/architecture.md §3
   std::uint32_t tet_id = 0;
   int surface = -1;    // index of the isovalue hit
   double abs_cos = 0;  // |cos| between the ray and the surface normal

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/camera.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/volume/tet_volume.hpp"
+#include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
+#include "render/volume/tet_volume.hpp"
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::test {
@@ -57,7 +57,7 @@ std::vector<double> sample_field(std::span<const double> points, const ScalarFun
 std::vector<double> random_field(std::size_t point_count, unsigned seed);
 
 BoxMesh jittered_box(int cells, double jitter = 0.15);
-GyroidTwist gyroid(int n);  // DESIGN §6 at t = 0.2, so the twist is on
+GyroidTwist gyroid(int n);  // docs/architecture.md §6 at t = 0.2, so the twist is on
 
 // One isosurface per value, each with its own color.
 std::vector<render::IsoSurface> make_surfaces(std::span<const double> isovalues);
@@ -66,7 +66,7 @@ std::vector<double> isovalues_of(std::span<const render::IsoSurface> surfaces);
 render::Camera look_at(Vec3d eye, Vec3d target, double fov_deg, int width, int height,
                        Vec3d up = {0, 1, 0});
 
-// The gyroid-twist benchmark camera of DESIGN §6, side x side pixels.
+// The gyroid-twist benchmark camera of docs/architecture.md §6, side x side pixels.
 render::Camera benchmark_camera(int side);
 
 // Cameras that exercise different ray set-ups around a mesh in [-1, 1]^3 shifted by `center`:

@@ -5,10 +5,10 @@
 
 #include <cstdio>
 
-#include "tools/vtk_io/vtk_files.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
 #include "tools/scenes/box_mesh.hpp"
+#include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray {
 namespace {
@@ -36,7 +36,7 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// The gyroid-twist scene of DESIGN §6 at n = 8 (3072 tets), field "gyroid".
+// The gyroid-twist scene of docs/architecture.md §6 at n = 8 (3072 tets), field "gyroid".
 std::string write_gyroid(const ScratchDir& dir) {
   const GyroidTwist scene = make_gyroid_twist(8, 0);
   vtkio::TetGrid grid;

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "support/scratch_dir.hpp"
 #include "plane_scene.hpp"
+#include "support/scratch_dir.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::testing {

@@ -11,9 +11,9 @@
 
 #include <fstream>
 
-#include "tools/vtk_io/vtk_files.hpp"
 #include "support/scratch_dir.hpp"
 #include "tools/scenes/box_mesh.hpp"
+#include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -24,7 +24,8 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// The gyroid-twist scene of DESIGN §6 as a TetGrid, with a second field and ghost flags.
+// The gyroid-twist scene of docs/architecture.md §6 as a TetGrid, with a second field and ghost
+// flags.
 TetGrid gyroid_grid(int n) {
   const GyroidTwist scene = make_gyroid_twist(n, 0.2);
   TetGrid grid;

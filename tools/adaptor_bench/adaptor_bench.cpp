@@ -1,8 +1,8 @@
-// tetray-adaptor-bench: what the adaptor costs the solver on the gyroid-twist scene (DESIGN §6,
-// issue 5): the adaptor's own overhead per rendered step (validation, conversion, bookkeeping:
-// the blocked time minus refit and trace) against refit + trace; the cost of an off-trigger
-// execute; and the time a rendered step blocks the solver with and without the writer thread.
-// Prints a table and a JSON object.
+// tetray-adaptor-bench: what the adaptor costs the solver on the gyroid-twist scene
+// (docs/architecture.md §6): the adaptor's own overhead per rendered step (validation, conversion,
+// bookkeeping: the blocked time minus refit and trace) against refit + trace; the cost of an
+// off-trigger execute; and the time a rendered step blocks the solver with and without the writer
+// thread. Prints a table and a JSON object.
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 

@@ -1,7 +1,7 @@
-// The memory-bandwidth bound of issue 4: the traffic a new time step's update must cause, and
-// the time memcpy needs to move the same traffic on the same threads. Both the update and the
-// memcpy are timed with cold caches (evict_caches before each run): in situ the solver's own
-// step runs between two renders and leaves none of the renderer's data in cache, and a bound
+// The memory-bandwidth bound of the update figures: the traffic a new time step's update must
+// cause, and the time memcpy needs to move the same traffic on the same threads. Both the update
+// and the memcpy are timed with cold caches (evict_caches before each run): in situ the solver's
+// own step runs between two renders and leaves none of the renderer's data in cache, and a bound
 // measured on buffers that fit in the last-level cache would be a cache bound, not a memory one.
 //
 // What is counted (bytes read + bytes written; an array updated in place counts in both, since

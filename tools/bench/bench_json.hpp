@@ -1,4 +1,4 @@
-// The --json output: issue 3's shape plus issue 4's "refit" object per scene.
+// The --json output: per scene the build, trace and reference figures and a "refit" object.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
-// tetray-bench: the gyroid-twist benchmark of DESIGN §6 (issues 3 and 4). Per size it measures
-// tetray (build, trace, counts, refit) and, in the same run and the same oneTBB arena, the
+// tetray-bench: the gyroid-twist benchmark of docs/architecture.md §6. Per size it
+// measures tetray (build, trace, counts, refit) and, in the same run and the same oneTBB arena, the
 // extract-then-trace reference (VTK contour + Embree), prints a table with the targets and
 // optionally writes JSON.
 #include <unistd.h>
@@ -59,8 +59,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   figures.ref = measure_reference(scene, camera, tetray.image, options.threads);
   figures.refit =
       measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
-  figures.cpu_share =
-      (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
+  figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   return figures;
 }
 

@@ -1,5 +1,5 @@
 // The extract-then-trace reference on one time step of the in-situ loop, timed as a whole, so
-// that issue 4's step ratio compares the two pipelines on the same step in the same seconds.
+// that the in-situ step ratio compares the two pipelines on the same step in the same seconds.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Issue 4's figures for one scene: the cost of bringing a new time step into the renderer
+// The update figures of one scene: the cost of bringing a new time step into the renderer
 // (field only, geometry + field, rebuild) next to its memcpy bound, the per-step in-situ total,
 // and the rebuild policy's decisions over the gyroid-twist steps and after a strong deformation.
 #pragma once

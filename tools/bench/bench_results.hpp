@@ -38,7 +38,7 @@ struct ReferenceFigures {
   double depth_median_rel_diff = 0;
 };
 
-// Issue 4: a new time step on the same topology. The bounds are memcpy times of the bytes each
+// A new time step on the same topology. The bounds are memcpy times of the bytes each
 // update must touch (bench_bandwidth.hpp says which).
 struct RefitFigures {
   double field_only_ms = 0;
@@ -49,7 +49,7 @@ struct RefitFigures {
   double bound_geometry_ms = 0;
   double rebuild_ms = 0;
   // update (geometry + field) + trace, each step the best of a few runs, median over steps:
-  double step_total_ms = 0;          // traced in 16x16 packets, as issue 4 defines the step
+  double step_total_ms = 0;          // traced in 16x16 packets, the step's packet size
   double step_total_default_ms = 0;  // in the default packets (render::TraceOptions)
   double ref_step_total_ms = 0;
   double quality_ratio_after_steps = 0;

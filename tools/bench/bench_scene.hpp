@@ -1,5 +1,5 @@
-// The gyroid-twist benchmark scene of DESIGN §6 as the bench uses it: mesh and field at a time
-// step, the camera, the isosurface, and the views the renderer ingests.
+// The gyroid-twist benchmark scene of docs/architecture.md §6 as the bench uses it: mesh and field
+// at a time step, the camera, the isosurface, and the views the renderer ingests.
 #pragma once
 
 #include <cstddef>

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "bench_results.hpp"
-#include "render/trace/camera.hpp"
 #include "render/core/framebuffer.hpp"
+#include "render/trace/camera.hpp"
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::bench {

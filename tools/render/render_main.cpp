@@ -1,5 +1,5 @@
-// tetray-render: ray-traces isosurfaces of one VTK grid of tets into an EXR or PNG (issue 3
-// item 8). The same stages as an in-situ step, run once: read -> check -> load (BVH build) ->
+// tetray-render: ray-traces isosurfaces of one VTK grid of tets into an EXR or PNG. The
+// same stages as an in-situ step, run once: read -> check -> load (BVH build) ->
 // trace -> write.
 #include <tbb/task_arena.h>
 
@@ -7,15 +7,15 @@
 #include <cstdio>
 #include <exception>
 
-#include "tools/vtk_io/vtk_files.hpp"
 #include "render/core/stopwatch.hpp"
-#include "render/trace/camera.hpp"
 #include "render/image/image_write.hpp"
+#include "render/trace/camera.hpp"
 #include "render/trace/iso_palette.hpp"
-#include "render/volume/mesh_check.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
+#include "render/volume/mesh_check.hpp"
 #include "tools/render/render_options.hpp"
+#include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::tools {
 namespace {

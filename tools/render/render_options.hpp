@@ -1,12 +1,12 @@
-// The command line of tetray-render (issue 3 item 8).
+// The command line of tetray-render.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "render/trace/trace.hpp"
 #include "render/core/vec.hpp"
+#include "render/trace/trace.hpp"
 
 namespace tetray::tools {
 

@@ -54,7 +54,7 @@ int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series, int
         step == 0 || grid.points != previous.points,
         step == 0 || grid.tets != previous.tets || grid.ghost != previous.ghost, true};
     const tetray::Status status = tetray::execute(adaptor, static_cast<std::int64_t>(step),
-                                                       series[step].time, grid, changes, nullptr);
+                                                  series[step].time, grid, changes, nullptr);
     if (!status.ok()) {
       if (rank == 0)
         std::fprintf(stderr, "tetray-replay: step %zu: %s\n", step, status.message.c_str());

@@ -41,12 +41,16 @@ enum class IndexType : std::uint8_t { int32, int64 };
 struct PointsView {
   const void* xyz = nullptr;
   ScalarType type = ScalarType::float64;
-  std::size_t count = 0;  // number of points
+  std::size_t count = 0;               // number of points
   const void* displacement = nullptr;  // optional, same count
   ScalarType displacement_type = ScalarType::float64;
 
-  static PointsView of(std::span<const double> xyz) { return {xyz.data(), ScalarType::float64, xyz.size() / 3}; }
-  static PointsView of(std::span<const float> xyz) { return {xyz.data(), ScalarType::float32, xyz.size() / 3}; }
+  static PointsView of(std::span<const double> xyz) {
+    return {xyz.data(), ScalarType::float64, xyz.size() / 3};
+  }
+  static PointsView of(std::span<const float> xyz) {
+    return {xyz.data(), ScalarType::float32, xyz.size() / 3};
+  }
 };
 
 // Tet connectivity, 4 point indices per tet, int32 or int64.
@@ -61,8 +65,12 @@ struct TetsView {
   // any rank count. Without them, rank-local ids are used.
   const std::int64_t* global_ids = nullptr;
 
-  static TetsView of(std::span<const std::int64_t> c) { return {c.data(), IndexType::int64, c.size() / 4}; }
-  static TetsView of(std::span<const std::int32_t> c) { return {c.data(), IndexType::int32, c.size() / 4}; }
+  static TetsView of(std::span<const std::int64_t> c) {
+    return {c.data(), IndexType::int64, c.size() / 4};
+  }
+  static TetsView of(std::span<const std::int32_t> c) {
+    return {c.data(), IndexType::int32, c.size() / 4};
+  }
 };
 
 struct MeshView {
@@ -77,8 +85,12 @@ struct FieldView {
   ScalarType type = ScalarType::float64;
   std::size_t count = 0;
 
-  static FieldView of(std::string_view name, std::span<const double> v) { return {name, v.data(), ScalarType::float64, v.size()}; }
-  static FieldView of(std::string_view name, std::span<const float> v) { return {name, v.data(), ScalarType::float32, v.size()}; }
+  static FieldView of(std::string_view name, std::span<const double> v) {
+    return {name, v.data(), ScalarType::float64, v.size()};
+  }
+  static FieldView of(std::string_view name, std::span<const float> v) {
+    return {name, v.data(), ScalarType::float32, v.size()};
+  }
 };
 
 // What changed since the last execute call. The first call is always treated as a full change.
@@ -90,10 +102,10 @@ struct Changes {
 
 // What one execute call did (for the solver's own logging).
 struct ExecuteReport {
-  bool rendered = false;        // false on an off-trigger step
+  bool rendered = false;  // false on an off-trigger step
   int scenes_rendered = 0;
-  double seconds_blocked = 0;   // time execute held the solver
-  std::string bvh_decision;     // "none", "field_refit", "refit", "rebuild"
+  double seconds_blocked = 0;      // time execute held the solver
+  std::string bvh_decision;        // "none", "field_refit", "refit", "rebuild"
   std::uint64_t tets_skipped = 0;  // under the skip_tets NaN/Inf policy
 };
 
@@ -122,10 +134,12 @@ class Adaptor {
   // Drains the writer queue, closes the logs. Collective. Idempotent.
   Status finalize();
 
-  class Impl;
-
  private:
+  class Impl;
   explicit Adaptor(std::unique_ptr<Impl> impl);
+  // create and create_from_yaml with the config parser each uses (defined in adaptor.cpp).
+  template <typename Parse>
+  static std::unique_ptr<Adaptor> create_with(MPI_Comm comm, Parse&& parse, Status& status);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -1,5 +1,5 @@
 // The mesh split among the ranks, traced per rank with the global camera and composited, gives
-// the image of one rank tracing the whole mesh (issue 6): identical hit/miss, depth within 1e-6
+// the image of one rank tracing the whole mesh: identical hit/miss, depth within 1e-6
 // relative, and hit keys that differ only where two tets tie in depth, on under 0.01% of the
 // pixels. Partitions: slabs by tet centroid x, a random one, and slabs that leave the root
 // empty. Each rank ingests only its own tets and points, as the adaptor does, with the origin

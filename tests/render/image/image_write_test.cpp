@@ -17,8 +17,8 @@
 #include <limits>
 #include <random>
 
-#include "support/png_read.hpp"
 #include "render/image/image_write.hpp"
+#include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace tetray::render {

@@ -1,4 +1,4 @@
-// Bad input (issue 3, DESIGN §5): render::check_mesh names what is wrong or, under skip_tets,
+// Bad input (docs/architecture.md §5): render::check_mesh names what is wrong or, under skip_tets,
 // drops the tets that touch non-finite data, and the renderer then draws what is valid. Empty
 // meshes and isovalues outside the field's range give the background, never a crash.
 #include <gtest/gtest.h>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "support/reference_comparison.hpp"
-#include "render/volume/mesh_check.hpp"
 #include "render/update/volume_update.hpp"
+#include "render/volume/mesh_check.hpp"
+#include "support/reference_comparison.hpp"
 #include "support/render_fixtures.hpp"
 
 namespace tetray::test {

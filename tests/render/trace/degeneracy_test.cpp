@@ -1,4 +1,4 @@
-// Ties and degeneracies (issue 3): vertex values equal to the isovalue, constant fields,
+// Ties and degeneracies: vertex values equal to the isovalue, constant fields,
 // surfaces along tet faces and through vertices, inverted and zero-volume tets, and a mesh far
 // from the coordinate origin. Every image must be well-formed and agree with the reference.
 #include <gtest/gtest.h>

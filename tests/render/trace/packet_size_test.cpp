@@ -1,4 +1,4 @@
-// Packet sizes (issue 3): single rays and 8x8, 16x16 and 32x32 packets give bitwise identical
+// Packet sizes: single rays and 8x8, 16x16 and 32x32 packets give bitwise identical
 // images, also for image sizes that leave partial packets at the right and bottom edges.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// tetray against the brute-force reference, pixel by pixel (issue 3, correctness): the
+// tetray against the brute-force reference, pixel by pixel: the
 // gyroid-twist scene at small n and random fields on jittered boxes, one and several
 // isosurfaces, cameras outside, inside and far away.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Traversal statistics (issue 3, seed 000 Table 4): with collect_stats the counters agree with
+// Traversal statistics (Wald et al. 2007, Table 4): with collect_stats the counters agree with
 // the image they describe, and collecting them does not change the image.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Watertightness (issue 3, DESIGN §5): a closed level set seen from many random cameras. Every
+// Watertightness (docs/architecture.md §5): a closed level set seen from many random cameras. Every
 // ray whose exact path passes through the enclosed region {f_PL < iso} (decided in double by
 // the reference, with a small margin) must hit the surface: zero misses, with every packet size.
 #include <gtest/gtest.h>

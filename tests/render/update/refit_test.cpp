@@ -8,10 +8,10 @@
 #include <numeric>
 #include <random>
 
-#include "support/reference_comparison.hpp"
 #include "render/bvh/bounds.hpp"
 #include "render/update/step_store.hpp"
 #include "render/update/volume_update.hpp"
+#include "support/reference_comparison.hpp"
 
 namespace tetray::test {
 namespace {
@@ -47,7 +47,7 @@ std::size_t count_differences(const Framebuffer& a, const Framebuffer& b) {
   return bad;
 }
 
-// The gyroid-twist steps of DESIGN §6, deformed from the undeformed jittered box.
+// The gyroid-twist steps of docs/architecture.md §6, deformed from the undeformed jittered box.
 struct Series {
   BoxMesh box;
   std::vector<double> points, field;
