@@ -26,6 +26,8 @@ Json::Value reference(const ReferenceFigures& ref) {
   json["triangles"] = count(ref.triangles);
   json["embree_build_ms"] = number(ref.embree_build_ms);
   json["embree_trace_ms"] = number(ref.embree_trace_ms);
+  json["embree_packets"] = ref.embree_packets;
+  json["embree_same_depth"] = ref.embree_same_depth;
   json["depth_agree_fraction"] = number(ref.depth_agree_fraction);
   json["depth_median_rel_diff"] = number(ref.depth_median_rel_diff);
   return json;

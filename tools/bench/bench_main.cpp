@@ -41,6 +41,7 @@ ReferenceFigures measure_reference(const GyroidTwist& scene, const render::Camer
   ref.embree_build_ms = embree.build_ms;
   ref.embree_trace_ms = embree.trace_ms;
   ref.embree_packets = embree.packets;
+  ref.embree_same_depth = embree.same_depth;
   ref.depth_agree_fraction = agreement.agree_fraction;
   ref.depth_median_rel_diff = agreement.median_rel_diff;
   return ref;

@@ -7,7 +7,7 @@
 namespace tetray::bench {
 
 struct BenchOptions {
-  std::vector<int> sizes{32, 56, 88};  // gyroid-twist resolutions n (6 n^3 tets)
+  std::vector<int> sizes{32, 56, 88, 133};  // gyroid-twist resolutions n (6 n^3 tets)
   int threads = 2;
   std::string json_path;  // empty: no JSON
   int size_px = 1024;     // square image

@@ -15,6 +15,7 @@ struct EmbreeRun {
   double build_ms = 0;       // rtcCommitScene
   double trace_ms = 0;       // the faster of single rays and 16-ray packets
   bool packets = false;      // the faster is the packet trace
+  bool same_depth = false;   // packets and single rays gave bitwise the same depth image
   std::vector<float> depth;  // view-axis depth per pixel, +infinity for a miss
 };
 

@@ -34,6 +34,7 @@ struct ReferenceFigures {
   double embree_build_ms = 0;
   double embree_trace_ms = 0;
   bool embree_packets = false;  // the faster of Embree's traces is the packet one, not single rays
+  bool embree_same_depth = false;  // its packet and single-ray traces gave the same depth image
   double depth_agree_fraction = 0;
   double depth_median_rel_diff = 0;
 };

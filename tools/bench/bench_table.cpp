@@ -33,9 +33,10 @@ void print_tetray(const SceneFigures& s) {
 void print_reference(const ReferenceFigures& r) {
   std::printf(
       "  reference      VTK contour %.1f ms (%.2f M triangles), Embree build %.1f ms,"
-      " trace %.1f ms (%s)\n",
+      " trace %.1f ms (%s; packets and single rays %s)\n",
       r.contour_ms, mega(r.triangles), r.embree_build_ms, r.embree_trace_ms,
-      embree_trace_mode(r.embree_packets));
+      embree_trace_mode(r.embree_packets),
+      r.embree_same_depth ? "give the same depth image" : "DIFFER");
   std::printf("  depth check    %.4f%% of pixels agree on hit/miss, median rel diff %.2e\n",
               100 * r.depth_agree_fraction, r.depth_median_rel_diff);
 }
