@@ -1,0 +1,56 @@
+// The renderer's default thread count: the affinity mask the process runs under, capped by its
+// cgroup's CPU quota. ctest runs the affinity test under `taskset` with the count it expects in
+// TETRAY_EXPECTED_THREADS; the quota parsing runs on cgroup files written here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "support/scratch_dir.hpp"
+#include "thread_budget.hpp"
+
+namespace tetray {
+namespace {
+
+void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(ThreadBudget, FollowsTheAffinityMaskItRunsUnder) {
+  const char* expected = std::getenv("TETRAY_EXPECTED_THREADS");
+  if (expected == nullptr)
+    GTEST_SKIP() << "ctest runs this under taskset (adaptor_thread_budget_taskset_*)";
+  const int cpus = std::atoi(expected);
+  EXPECT_EQ(cpus_in_affinity_mask(), cpus);
+  // A cgroup quota below the mask (none on the machines of this project's CI) lowers it.
+  const std::optional<double> quota = cgroup_cpu_quota(own_cgroup_dir());
+  EXPECT_EQ(default_thread_count(), quota && *quota < cpus ? std::max(1, int(*quota)) : cpus);
+}
+
+TEST(ThreadBudget, ReadsACgroupV2Quota) {
+  const testing::ScratchDir dir;
+  write(dir / "cpu.max", "250000 100000\n");
+  EXPECT_DOUBLE_EQ(cgroup_cpu_quota(dir.path().string()).value_or(0), 2.5);
+  write(dir / "cpu.max", "max 100000\n");
+  EXPECT_FALSE(cgroup_cpu_quota(dir.path().string()));
+}
+
+TEST(ThreadBudget, ReadsACgroupV1Quota) {
+  const testing::ScratchDir dir;
+  write(dir / "cpu.cfs_period_us", "100000\n");
+  write(dir / "cpu.cfs_quota_us", "150000\n");
+  EXPECT_DOUBLE_EQ(cgroup_cpu_quota(dir.path().string()).value_or(0), 1.5);
+  write(dir / "cpu.cfs_quota_us", "-1\n");
+  EXPECT_FALSE(cgroup_cpu_quota(dir.path().string()));
+}
+
+TEST(ThreadBudget, NoQuotaWhereNoCgroupFilesAre) {
+  const testing::ScratchDir dir;
+  EXPECT_FALSE(cgroup_cpu_quota(dir.path().string()));
+  write(dir / "cpu.max", "garbage\n");
+  EXPECT_FALSE(cgroup_cpu_quota(dir.path().string()));
+}
+
+}  // namespace
+}  // namespace tetray
