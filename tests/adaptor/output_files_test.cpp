@@ -151,10 +151,14 @@ TEST_F(OutputFiles, SymbolicLinkInPlaceOfAnOutputFolderIsRefused) {
   EXPECT_TRUE(fs::is_empty(elsewhere_));
 }
 
-// A FIFO would block the writer forever in open() waiting for a reader.
+// A FIFO would block the writer forever in open() waiting for the other end. Should it block,
+// the alarm ends the test (SIGALRM) instead of leaving it hanging.
 TEST_F(OutputFiles, FifoInPlaceOfTheLogIsRefusedWithoutWaiting) {
   ASSERT_EQ(::mkfifo(log().c_str(), 0600), 0);
-  expect_io_error_naming(run({0}), log(), "not a regular file");
+  ::alarm(20);
+  const Status status = run({0});
+  ::alarm(0);
+  expect_io_error_naming(status, log(), "not a regular file");
 }
 
 // A link planted in place of the log during a run: the next append refuses it.
