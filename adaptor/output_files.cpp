@@ -79,11 +79,17 @@ bool is_numbered_name(std::string_view name, std::string_view prefix, std::strin
   return !step.empty() && step.find_first_not_of("0123456789") == std::string_view::npos;
 }
 
+using NamePredicate = std::function<bool(const std::string&)>;
+
 // Temporary files of a killed earlier run, only those of the files this run writes in `dir`.
-std::string remove_stale_temporaries(const fs::path& dir,
-                                     const std::function<bool(const std::string&)>& is_target) {
+std::string remove_stale_temporaries_in(const fs::path& dir, const NamePredicate& is_target) {
   const render::WriteResult removed = render::remove_stale_temporaries(dir.string(), is_target);
   return removed.ok ? std::string() : removed.message;
+}
+
+// Accepts the file name of `path` only.
+NamePredicate named_as(const std::string& path) {
+  return [name = fs::path(path).filename().string()](const std::string& n) { return n == name; };
 }
 
 std::vector<std::string> split_cells(const std::string& row) {
@@ -113,7 +119,7 @@ bool lists_images_on_disk(const fs::path& cdb_dir, const std::string& row, std::
 // file is rewritten, atomically, only when that changes it: a last line torn by a killed run or a
 // dropped row.
 std::string reopen_table(const std::string& path, const std::string& header,
-                         const std::function<bool(const std::string&)>& keep_row) {
+                         const NamePredicate& keep_row) {
   const FileLines old = read_complete_lines(path);
   if (!old.error.empty()) return old.error;
   std::vector<std::string> lines{header};
@@ -136,15 +142,13 @@ std::string prepare_scene_outputs(const config::Output& output, const std::strin
   const auto is_image = [&](const std::string& name) {
     return is_numbered_name(name, prefix, ".png") || is_numbered_name(name, prefix, ".exr");
   };
-  if (auto e = remove_stale_temporaries(images, is_image); !e.empty()) return e;
-  if (auto e = remove_stale_temporaries(cdb, [](const std::string& n) { return n == "data.csv"; });
-      !e.empty()) {
-    return e;
-  }
+  const std::string table = cinema_path(output.directory, scene);
+  if (auto e = remove_stale_temporaries_in(images, is_image); !e.empty()) return e;
+  if (auto e = remove_stale_temporaries_in(cdb, named_as(table)); !e.empty()) return e;
   if (!output.cinema) return {};
   const std::string header = cinema_header(output);
   const std::size_t columns = split_cells(header).size();
-  return reopen_table(cinema_path(output.directory, scene), header, [&](const std::string& row) {
+  return reopen_table(table, header, [&](const std::string& row) {
     return lists_images_on_disk(cdb, row, columns);
   });
 }
@@ -201,10 +205,9 @@ std::string prepare_outputs(const config::Output& output,
   for (const config::Scene& s : scenes) {
     if (auto e = prepare_scene_outputs(output, s.name); !e.empty()) return e;
   }
-  const auto is_log = [](const std::string& name) { return name == "tetray_log.csv"; };
-  if (auto e = remove_stale_temporaries(output.directory, is_log); !e.empty()) return e;
-  return reopen_table(log_path(output.directory), log_header(),
-                      [](const std::string&) { return true; });
+  const std::string log = log_path(output.directory);
+  if (auto e = remove_stale_temporaries_in(output.directory, named_as(log)); !e.empty()) return e;
+  return reopen_table(log, log_header(), [](const std::string&) { return true; });
 }
 
 std::string prepare_rank_image_directories(const config::Output& output,
@@ -217,7 +220,7 @@ std::string prepare_rank_image_directories(const config::Output& output,
     const auto is_mine = [&](const std::string& name) {
       return is_numbered_name(name, prefix, suffix);
     };
-    if (auto e = remove_stale_temporaries(ranks, is_mine); !e.empty()) return e;
+    if (auto e = remove_stale_temporaries_in(ranks, is_mine); !e.empty()) return e;
   }
   return {};
 }
