@@ -1,7 +1,11 @@
 // Nothing torn by SIGKILL: a writer process (killed_writer_main.cpp) is killed at random moments,
 // again and again, into one output directory, each run starting where the last could have got
 // to and overlapping it (so runs both append rows and replace rows of steps rendered again).
-// After every kill, every image under its final name decodes completely (PNG with libpng, EXR with
+// Before its kill, each run is also frozen (SIGSTOP) at many random moments and inspected: the
+// files then are what a kill at that instant would leave, so one run samples many instants
+// (a window of a few microseconds, such as an image written in place, is then hit within a
+// run or two, which a few kills alone would rarely do). At every inspection and after every
+// kill, every image under its final name decodes completely (PNG with libpng, EXR with
 // OpenEXR), and every line of the Cinema table and the timing log is complete: it ends with a
 // newline and has the header's column count; the table lists each step once, and only images
 // that are on disk. A last run that is not killed leaves no temporary file behind.
@@ -13,12 +17,14 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -33,8 +39,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kKills = 10;
-constexpr int kStepsPerRun = 20;          // a run's first step: a killed run gets through a few
+constexpr int kKills = 6;
+constexpr int kFreezesPerRun = 25;
+constexpr int kStepsPerRun = 20;  // between runs' first steps: a run gets through more than this
 constexpr int kWidth = 64, kHeight = 48;  // plane_config's image
 
 // Starts the writer; returns its pid once it has written its start byte (-1 if it died first).
@@ -118,23 +125,54 @@ void expect_whole_png(const fs::path& path) {
   EXPECT_EQ(png.height, kHeight) << path;
 }
 
-// What a kill at any moment may leave, checked file by file. Returns the lines of the log, which
-// every run only appends to: how far the writers got.
-std::size_t expect_nothing_torn(const fs::path& dir) {
-  if (fs::exists(dir / "plane")) {
-    for (const auto& entry : fs::directory_iterator(dir / "plane")) {
-      const fs::path& p = entry.path();
-      if (p.extension() == ".png") expect_whole_png(p);
-      if (p.extension() == ".exr") expect_whole_exr(p);
+// The inode, size and modification time of a file: whether it changed since it was checked.
+struct FileVersion {
+  ino_t inode = 0;
+  off_t size = 0;
+  long long mtime_ns = 0;
+  bool operator==(const FileVersion&) const = default;
+};
+
+FileVersion version_of(const fs::path& path) {
+  struct stat s {};
+  if (::stat(path.c_str(), &s) != 0) return {};
+  return {s.st_ino, s.st_size, s.st_mtim.tv_sec * 1'000'000'000LL + s.st_mtim.tv_nsec};
+}
+
+// What a kill at any moment may leave, checked file by file; an image is decoded again only
+// when it changed since it was last found whole.
+class TornFileCheck {
+ public:
+  explicit TornFileCheck(fs::path dir) : dir_(std::move(dir)) {}
+
+  // Returns the lines of the log, which every run only appends to: how far the writers got.
+  std::size_t expect_nothing_torn() {
+    if (fs::exists(dir_ / "plane")) {
+      for (const auto& entry : fs::directory_iterator(dir_ / "plane")) expect_whole_image(entry);
     }
+    std::size_t log_lines = 0;
+    if (const auto log = contents(dir_ / "tetray_log.csv")) {
+      log_lines = complete_lines(dir_ / "tetray_log.csv", *log).size();
+    }
+    if (const auto table = contents(dir_ / "plane.cdb" / "data.csv")) {
+      expect_rows_of_images_on_disk(complete_lines(dir_ / "plane.cdb" / "data.csv", *table));
+    }
+    return log_lines;
   }
-  std::size_t log_lines = 0;
-  if (const auto log = contents(dir / "tetray_log.csv")) {
-    log_lines = complete_lines(dir / "tetray_log.csv", *log).size();
+
+ private:
+  void expect_whole_image(const fs::directory_entry& entry) {
+    const fs::path& p = entry.path();
+    if (p.extension() != ".png" && p.extension() != ".exr") return;
+    const FileVersion version = version_of(p);
+    if (whole_[p.string()] == version) return;
+    if (p.extension() == ".png") expect_whole_png(p);
+    if (p.extension() == ".exr") expect_whole_exr(p);
+    if (!::testing::Test::HasFailure()) whole_[p.string()] = version;
   }
-  const fs::path cdb = dir / "plane.cdb";
-  if (const auto table = contents(cdb / "data.csv")) {
-    const std::vector<std::string> lines = complete_lines(cdb / "data.csv", *table);
+
+  void expect_rows_of_images_on_disk(const std::vector<std::string>& lines) {
+    const fs::path cdb = dir_ / "plane.cdb";
     std::set<std::string> steps;
     for (std::size_t k = 1; k < lines.size(); ++k) {
       const std::string& row = lines[k];
@@ -146,7 +184,16 @@ std::size_t expect_nothing_torn(const fs::path& dir) {
       }
     }
   }
-  return log_lines;
+
+  fs::path dir_;
+  std::map<std::string, FileVersion> whole_;
+};
+
+// Stops the writer (every thread: waitpid reports the stop once the whole group is stopped).
+bool freeze(pid_t writer) {
+  int status = 0;
+  return ::kill(writer, SIGSTOP) == 0 && ::waitpid(writer, &status, WUNTRACED) == writer &&
+         WIFSTOPPED(status);
 }
 
 TEST(KilledRun, LeavesOnlyWholeImagesAndWholeLines) {
@@ -156,31 +203,40 @@ TEST(KilledRun, LeavesOnlyWholeImagesAndWholeLines) {
   const char* asan = std::getenv("ASAN_OPTIONS");
   ::setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
   const ScratchDir dir;
+  const fs::path log = dir.path() / "tetray_log.csv";
+  TornFileCheck check(dir.path());
   std::mt19937 rng(20261201);  // fixed: the same delays every time
-  std::uniform_int_distribution<int> delay_us(0, 60'000);
-  int killed_while_writing = 0;
+  std::uniform_int_distribution<int> delay_us(0, 4'000);
+  std::size_t lines = 0;
   for (int run = 0; run < kKills; ++run) {
-    const pid_t writer = start_writer(dir.path(), kStepsPerRun * run / 2, 1'000'000);
+    const pid_t writer = start_writer(dir.path(), kStepsPerRun * run, 1'000'000);
     ASSERT_GT(writer, 0) << "the writer did not start";
-    const std::size_t lines_before = expect_nothing_torn(dir.path());
+    // The first instants of a run fall while it reopens its tables.
+    for (int k = 0; k < kFreezesPerRun; ++k) {
+      std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
+      ASSERT_TRUE(freeze(writer));
+      check.expect_nothing_torn();
+      ASSERT_EQ(::kill(writer, SIGCONT), 0);
+      if (::testing::Test::HasFailure()) break;
+    }
     std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
     ASSERT_EQ(::kill(writer, SIGKILL), 0);
     int status = 0;
     ASSERT_EQ(::waitpid(writer, &status, 0), writer);
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
         << "the writer ended on its own (status " << status << ") before it was killed";
-    killed_while_writing += expect_nothing_torn(dir.path()) > lines_before;
+    const std::size_t lines_after = check.expect_nothing_torn();
+    EXPECT_GT(lines_after, lines) << "run " << run << " wrote no log row before its kill";
+    lines = lines_after;
     if (::testing::Test::HasFailure()) return;
   }
-  // Most kills must land after the writer wrote something, or the test checks little.
-  EXPECT_GE(killed_while_writing, kKills / 2);
 
   const pid_t last = start_writer(dir.path(), 0, 3);
   ASSERT_GT(last, 0);
   int status = 0;
   ASSERT_EQ(::waitpid(last, &status, 0), last);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
-  expect_nothing_torn(dir.path());
+  check.expect_nothing_torn();
   for (const auto& entry : fs::recursive_directory_iterator(dir.path())) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
         << "left behind: " << entry.path();
