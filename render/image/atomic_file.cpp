@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "render/image/image_write.hpp"
 
@@ -80,7 +81,10 @@ std::optional<TemporaryName> parse_temporary_name(const std::string& file_name) 
   const std::size_t dash = rest.find('-');
   if (dash == std::string_view::npos) return std::nullopt;
   const std::optional<long> pid = whole_number(rest.substr(0, dash));
-  if (!pid || *pid <= 0 || !whole_number(rest.substr(dash + 1))) return std::nullopt;
+  if (!pid || *pid <= 0 || *pid > std::numeric_limits<pid_t>::max() ||
+      !whole_number(rest.substr(dash + 1))) {
+    return std::nullopt;
+  }
   return TemporaryName{file_name.substr(0, mark), *pid};
 }
 
@@ -94,8 +98,9 @@ WriteResult remove_stale_temporaries(const std::string& directory,
     const std::string name = entries->path().filename().string();
     const std::optional<TemporaryName> temporary = parse_temporary_name(name);
     // symlink_status: a link with a temporary's name is not one this code created.
+    std::error_code status_error;
     if (!temporary || !is_target(temporary->target) || !process_gone(temporary->pid) ||
-        !fs::is_regular_file(entries->symlink_status())) {
+        !fs::is_regular_file(entries->symlink_status(status_error))) {
       continue;
     }
     if (::unlink(entries->path().c_str()) != 0 && errno != ENOENT) {

@@ -46,7 +46,7 @@ TEST(TemporaryName, RejectsOtherNames) {
   for (const char* name :
        {"scene_000012.png", "data.csv.tmp", "data.csv.tmp12", "data.csv.tmp-1-0", "data.csv.tmp12-",
         "data.csv.tmp12-x", "data.csv.tmpab-0", "data.csv.tmp0-0", "data.csv.tmp12-0.bak",
-        ".tmp12-0", "data.csv.tmp 12-0", "data.csv.tmp+12-0"}) {
+        ".tmp12-0", "data.csv.tmp 12-0", "data.csv.tmp+12-0", "data.csv.tmp99999999999-0"}) {
     EXPECT_FALSE(parse_temporary_name(name)) << name;
   }
 }
