@@ -78,7 +78,7 @@ Status Adaptor::Impl::prepare_outputs_on_this_rank() {
   std::string error;
   if (is_writer()) error = prepare_outputs(output, config_.scenes);
   if (error.empty() && output.per_rank_images) {
-    error = prepare_rank_image_directories(output, config_.scenes);
+    error = prepare_rank_image_directories(output, config_.scenes, comm_.rank);
   }
   if (!error.empty()) return {StatusCode::io_error, error};
   if (is_writer()) writer_ = std::make_unique<ImageWriter>(output);

@@ -4,7 +4,9 @@
 // per_rank_images, every rank's own image
 // `<dir>/<scene>/ranks/<scene>_<step>_rank<rank>.png`. Every function returns an error message
 // (empty on success); a failed append leaves the file as it was, so nothing already written is
-// damaged.
+// damaged, and a run killed at any moment leaves whole images and whole lines (line_file.hpp).
+// A run into a directory that holds an earlier run's files keeps them: the Cinema table goes on
+// listing the earlier images still on disk, the log keeps the earlier rows.
 #pragma once
 
 #include <cstdint>
@@ -24,21 +26,22 @@ std::string rank_image_path(const std::string& directory, const std::string& sce
 std::string log_path(const std::string& directory);
 std::string cinema_path(const std::string& directory, const std::string& scene);
 
-// Creates the directories and starts the log and the Cinema tables with their headers.
+// Before the first step, on the writer rank: creates the folders, removes the temporary files a
+// killed earlier run left of the files this one writes, and opens the log and the Cinema tables:
+// a new table gets its header; an existing one with this run's header keeps its rows (the Cinema
+// table those whose images are all still on disk) and loses a last line a kill tore; one with
+// another header starts afresh.
 std::string prepare_outputs(const config::Output& output, const std::vector<config::Scene>& scenes);
 
-// Creates `<dir>/<scene>/ranks` for every scene. Every rank calls it: its output directory may
-// be one that only it sees.
+// Creates `<dir>/<scene>/ranks` for every scene and removes the stale temporary files of this
+// rank's images there. Every rank calls it: its output directory may be one that only it sees.
 std::string prepare_rank_image_directories(const config::Output& output,
-                                           const std::vector<config::Scene>& scenes);
+                                           const std::vector<config::Scene>& scenes, int rank);
 
 // This rank's un-composited image as PNG, without the background: what the rank did not cover
 // stays transparent, so the ranks' layers can be laid over each other.
 std::string write_rank_image(const config::Output& output, const std::string& scene,
                              std::int64_t step, int rank, const render::Framebuffer& image);
-
-// Appends `line` and a newline; on a short write truncates back to the old length.
-std::string append_line(const std::string& path, const std::string& line);
 
 // One composited image with what the writer needs to file it.
 struct ImageJob {
@@ -47,7 +50,9 @@ struct ImageJob {
   StepRecord record;
 };
 
-// Background, image files, Cinema row, log row; fills the record's writer timings and hits.
+// Background, image files, Cinema row, log row; fills the record's writer timings and hits. A
+// step whose image is already on disk (rendered again) replaces its Cinema row instead of
+// adding a second one.
 std::string write_image_job(const config::Output& output, ImageJob& job);
 
 }  // namespace tetray

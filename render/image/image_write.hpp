@@ -2,6 +2,7 @@
 // then rename) so that a killed job never leaves a torn image.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -45,5 +46,20 @@ EncodedImage encode_png(const Framebuffer& image, int compression_level = 1);
 // Writes `bytes` to a temporary file next to `path`, then renames it over `path`. On failure the
 // temporary file is removed and an existing file at `path` is left as it was.
 WriteResult write_file_atomically(const std::string& path, std::span<const unsigned char> bytes);
+
+// The temporary file write_file_atomically names `<target>.tmp<pid>-<counter>`: only a process
+// killed between creating and renaming it leaves one behind.
+struct TemporaryName {
+  std::string target;  // the file name it was to be renamed to
+  long pid = 0;        // the process that created it
+};
+// The parts of such a file name; nullopt for any other name.
+std::optional<TemporaryName> parse_temporary_name(const std::string& file_name);
+
+// Removes the regular files directly in `directory` that are temporaries of write_file_atomically
+// for a target name `is_target` accepts and whose creating process no longer exists on this
+// machine; every other file is left alone. A missing directory has none.
+WriteResult remove_stale_temporaries(const std::string& directory,
+                                     const std::function<bool(const std::string&)>& is_target);
 
 }  // namespace tetray::render

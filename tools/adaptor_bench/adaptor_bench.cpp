@@ -76,6 +76,7 @@ std::vector<double> column(const std::string& path, const std::string& name) {
 // Renders `o.steps` steps of the deforming gyroid; returns the per-step times.
 std::vector<StepTimes> rendered_steps(const Options& o, const tetray::GyroidTwist& scene,
                                       const std::string& dir, int queue_depth) {
+  std::filesystem::remove_all(dir);  // a run appends to an earlier run's log: start without one
   auto adaptor = make(config(o, dir, queue_depth, 1));
   if (!adaptor) return {};
   std::vector<double> points = scene.mesh.points, field = scene.field;
