@@ -6,6 +6,8 @@ trigger, report and context manager."""
 import pathlib
 import shutil
 import tempfile
+import threading
+import time
 import unittest
 
 import numpy as np
@@ -18,16 +20,16 @@ WIDTH, HEIGHT, EYE_Z, FOV_DEG, ISO = 64, 48, 5.0, 40.0, 0.25
 COMM = MPI.COMM_WORLD
 
 
-def config(directory, trigger=""):
+def config(directory, trigger="", width=WIDTH, height=HEIGHT, output_keys=""):
     return (f"output: {{directory: {directory}, quiet: true, formats: [png], "
-            f"writer_queue_depth: 0}}\n{trigger}"
+            f"writer_queue_depth: 0{output_keys}}}\n{trigger}"
             "scenes:\n"
             "  - name: plane\n"
             "    field: f\n"
             f"    isovalues: [{ISO}]\n"
             f"    camera: {{eye: [0, 0, {EYE_Z}], look_at: [0, 0, 0], up: [0, 1, 0], "
             f"fov_deg: {FOV_DEG}}}\n"
-            f"    image: {{width: {WIDTH}, height: {HEIGHT}}}\n")
+            f"    image: {{width: {width}, height: {height}}}\n")
 
 
 class Scene:
@@ -124,6 +126,31 @@ class AdaptorTest(unittest.TestCase):
             ghost = np.where(self.scene.centroids()[:, 0] > 0, flag, 0).astype(np.uint8)
             _, image = self.render(ghost=ghost)
             self.assert_square(image, keep=lambda x, slack: x < slack)
+
+    def test_other_threads_run_during_execute(self):
+        """execute releases the GIL: a thread that keeps stamping the time gets to run while the
+        step renders and (on the writer rank) encodes a large PNG inside the call."""
+        s = self.scene
+        stamps, stop = [], threading.Event()
+
+        def stamp():
+            while not stop.is_set():
+                stamps.append(time.perf_counter())
+                time.sleep(0.001)
+
+        big = config(self.directory(), width=512, height=512, output_keys=", png_compression: 9")
+        with tetray.Adaptor.from_yaml(COMM, big) as a:
+            ticker = threading.Thread(target=stamp)
+            ticker.start()
+            start = time.perf_counter()
+            a.execute(0, 0.0, s.points, s.tets, s.fields)
+            end = time.perf_counter()
+            stop.set()
+            ticker.join()
+        if COMM.rank == 0:  # the other ranks' part of the step may be too short to see
+            margin = 0.1 * (end - start)
+            inside = [t for t in stamps if start + margin < t < end - margin]
+            self.assertGreater(len(inside), 0, f"no stamp during {end - start:.3f} s of execute")
 
     def test_will_render_follows_the_trigger(self):
         s = self.scene

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The heat equation on a tet box with DOLFINx 0.5, rendered in situ by tetray.
 
-    mpirun -np 2 /usr/bin/python3 tools/dolfinx/heat_insitu.py [--config FILE] [--cells N]
-                                                               [--steps N] [--dt DT]
+    PYTHONPATH=build/python mpirun -np 2 /usr/bin/python3 tools/dolfinx/heat_insitu.py \
+        [--config FILE] [--cells N] [--steps N] [--dt DT]
 
 du/dt - div(grad u) = f on [0, 1]^3, u = 0 on the boundary and at t = 0, with a Gaussian source f
 circling the box's vertical axis once over the run; P1 Lagrange in space, backward Euler in time.
