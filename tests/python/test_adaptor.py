@@ -245,6 +245,18 @@ class AdaptorTest(unittest.TestCase):
             self.assertTrue(a.execute(0, 0.0, s.points, s.tets, s.fields).rendered)
         self.assert_square(self.image())
 
+    @unittest.skipIf(COMM.size < 2, "needs two ranks")
+    def test_ranks_without_tets_pass_empty_arrays(self):
+        s = self.scene
+        _, all_tets = support.box_mesh(4)
+        if COMM.rank == 0:
+            views = dict(points=s.points, tets=all_tets, fields=s.fields)
+        else:
+            views = dict(points=np.empty((0, 3)), tets=np.empty((0, 4), dtype=np.int64))
+        with self.adaptor() as a:
+            self.assertTrue(a.execute(0, 0.0, **views).rendered)
+        self.assert_square(self.image())
+
     def test_config_errors_raise_tetray_error(self):
         with self.assertRaises(tetray.Error) as raised:
             tetray.Adaptor.from_yaml(COMM, config(self.directory()) + "colour: red\n")
