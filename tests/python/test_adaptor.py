@@ -1,7 +1,7 @@
 """The Python package tetray against analytic images: the plane z = 0.25 of the field f = z on a
 tet box, seen head-on, on any number of ranks (each rank holds every point and a share of the
-tets). Also the argument and status errors, after which the adaptor still renders, and the
-trigger, report and context manager."""
+tets). Also the argument and status errors, after which the adaptor still renders, the trigger,
+report and context manager, and that other threads run during execute."""
 
 import pathlib
 import shutil
