@@ -11,6 +11,7 @@ packages=(
   libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   libxsimd-dev libembree-dev python3-imath libeigen3-dev libcli11-dev gfortran
   libjsoncpp-dev
+  pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
 )
 
 missing=()

@@ -1,0 +1,15 @@
+"""tetray.Error: a failed tetray call (a Status whose code is not ok)."""
+
+
+class Error(RuntimeError):
+    """Raised for a failed tetray call.
+
+    ``code`` is the tetray.StatusCode (``code.name`` its name, ``int(code)`` its value, the same
+    as the C API's TETRAY_* codes) and ``message`` the adaptor's text, which names the problem.
+    The adaptor stays usable after an Error: the next call may succeed.
+    """
+
+    def __init__(self, code, message):
+        super().__init__(f"{code.name}: {message}")
+        self.code = code
+        self.message = message
