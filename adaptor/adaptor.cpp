@@ -89,6 +89,15 @@ Status Adaptor::execute(std::int64_t step, double time, const MeshView& mesh,
   }
 }
 
+Status Adaptor::execute_failed(std::int64_t step, double time, Status error, const Changes& changes,
+                               ExecuteReport* report) {
+  try {
+    return impl_->execute_failed(step, time, std::move(error), changes, report);
+  } catch (const std::exception& e) {
+    return internal("execute", e.what());
+  }
+}
+
 Status Adaptor::finalize() {
   try {
     return impl_->finalize();

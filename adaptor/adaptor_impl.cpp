@@ -110,6 +110,14 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
   return status;
 }
 
+// The error becomes this rank's pending one (unless an older one waits): the render step's first
+// agreement reports it, and no view is read.
+Status Adaptor::Impl::execute_failed(std::int64_t step, double time, Status error,
+                                     const Changes& changes, ExecuteReport* report) {
+  if (pending_.ok()) pending_ = std::move(error);
+  return execute(step, time, MeshView{}, {}, changes, report);
+}
+
 void Adaptor::Impl::fill_report(const Status& status, double blocked_ms,
                                 ExecuteReport& report) const {
   const auto due =

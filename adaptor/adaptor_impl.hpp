@@ -34,6 +34,8 @@ class Adaptor::Impl {
   bool will_render(std::int64_t step, double time) const;
   Status execute(std::int64_t step, double time, const MeshView& mesh,
                  std::span<const FieldView> fields, const Changes& changes, ExecuteReport* report);
+  Status execute_failed(std::int64_t step, double time, Status error, const Changes& changes,
+                        ExecuteReport* report);
   Status finalize();
 
  private:

@@ -276,6 +276,38 @@ TEST(AdaptorCollective, ARankWithoutTetsNeedsNoFields) {
   EXPECT_LE(hits, expected.sure + expected.edge);
 }
 
+// The last rank cannot prepare its views (as when the VTK bridge's conversion fails): on a
+// render step every rank fails with its message; on an off-trigger step every rank returns ok
+// and the next render step reports it.
+TEST(AdaptorCollective, ARankThatCannotPrepareItsViewsFailsTheStepOnEveryRank) {
+  const SharedDir shared("execute_failed");
+  const PlaneScene scene = make_plane_scene(4);
+  auto a = make(shared.path(), "", "trigger: {every: 2}\n");
+  ASSERT_TRUE(a);
+  const auto fields = scene.fields();
+  const Status cannot{StatusCode::invalid_argument, "cannot convert the grid"};
+  const auto step = [&](std::int64_t k) {
+    return rank() == last_rank() ? a->execute_failed(k, static_cast<double>(k), cannot)
+                                 : execute(*a, scene, k, fields);
+  };
+  for (const std::int64_t failing : {0, 1}) {
+    Status status = step(failing);
+    if (failing == 1) {
+      EXPECT_TRUE(status.ok()) << "off-trigger: " << status.message;
+      status = execute(*a, scene, 2, fields);
+    }
+    expect_same_on_every_rank(status);
+    EXPECT_EQ(status.code, StatusCode::invalid_argument) << failing;
+    EXPECT_EQ(status.message, rank_prefix(last_rank()) + cannot.message) << failing;
+  }
+  const Status recovered = execute(*a, scene, 4, fields);
+  EXPECT_TRUE(recovered.ok()) << recovered.message;
+  EXPECT_TRUE(a->finalize().ok());
+  if (rank() != 0) return;
+  for (int k : {0, 2}) EXPECT_FALSE(fs::exists(image(shared.path(), "plane", k))) << k;
+  EXPECT_TRUE(fs::exists(image(shared.path(), "plane", 4)));
+}
+
 // Rank 0 alone makes nine off-trigger calls: were any of them collective, the ranks would
 // mismatch their collectives at step 10 and hang (the ctest timeout fails the test).
 TEST(AdaptorCollective, OffTriggerStepsNeedNoOtherRank) {

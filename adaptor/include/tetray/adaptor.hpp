@@ -137,6 +137,13 @@ class Adaptor {
                  std::span<const FieldView> fields, const Changes& changes = {},
                  ExecuteReport* report = nullptr);
 
+  // For a rank that could not prepare its views for this step (converting them failed, say):
+  // called instead of execute, collectively like it, so that no other rank is left waiting in
+  // the step. On a render step every rank returns `error`, prefixed with this rank's number; on
+  // an off-trigger step ok, and `error` is returned by the next render step or finalize.
+  Status execute_failed(std::int64_t step, double time, Status error, const Changes& changes = {},
+                        ExecuteReport* report = nullptr);
+
   // Whether execute(step, time, ...) would render at least one scene. No side effects, no MPI:
   // lets a solver (or the VTK bridge) skip preparing views on off-trigger steps.
   bool will_render(std::int64_t step, double time) const;
