@@ -101,10 +101,14 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
     any_due = any_due || s.due;
   }
   // Off-trigger: no MPI, and ok on every rank (a writer error waits for the next agreement).
-  const Status status = any_due ? render_step(step, time, mesh, fields) : Status::success();
+  if (!any_due) {
+    if (report != nullptr) fill_report(Status::success(), blocked.ms(), *report);
+    return Status::success();
+  }
+  const Status status = render_step(step, time, mesh, fields);
   const double blocked_ms = blocked.ms();
   if (report != nullptr) fill_report(status, blocked_ms, *report);
-  if (any_due && !status.failed() && is_writer() && !config_.output.quiet) {
+  if (!status.failed() && is_writer() && !config_.output.quiet) {
     print_progress(step, time, blocked_ms);
   }
   return status;
