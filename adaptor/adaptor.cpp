@@ -33,26 +33,29 @@ Adaptor::Adaptor(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Adaptor::~Adaptor() = default;
 
 // Collective: every rank parses (the text or the file) for the communicator's size, the ranks
-// agree on the outcome, and the writer rank prepares the outputs.
+// agree on the outcome, and the writer rank prepares the outputs. Whatever fails on one rank
+// before an agreement is that agreement's outcome, so no rank is left waiting in it.
 template <typename Parse>
 std::unique_ptr<Adaptor> Adaptor::create_with(MPI_Comm comm, Parse&& parse, Status& status) {
+  Communicator c;
+  status = duplicate(comm, c);
+  if (!status.ok()) return nullptr;
+  std::unique_ptr<Impl> impl;
   try {
-    Communicator c;
-    status = duplicate(comm, c);
-    if (!status.ok()) return nullptr;
-    config::ParseResult parsed = parse(c.size);
-    if (!parsed.config) status = {StatusCode::config_error, parsed.error};
+    status = guarded("create", [&] {
+      config::ParseResult parsed = parse(c.size);
+      if (!parsed.config) return Status{StatusCode::config_error, parsed.error};
+      impl = std::make_unique<Impl>(c, std::move(*parsed.config));
+      return Status::success();
+    });
     status = agree(c, status);
-    if (!status.ok()) {
-      MPI_Comm_free(&c.comm);
-      return nullptr;
-    }
-    auto impl = std::make_unique<Impl>(c, std::move(*parsed.config));
-    status = impl->start();
+    if (status.ok()) status = impl->start();
     if (status.ok()) return std::unique_ptr<Adaptor>(new Adaptor(std::move(impl)));
   } catch (const std::exception& e) {
     status = internal("create", e.what());
   }
+  // The communicator is the Impl's to free once it exists.
+  if (!impl) MPI_Comm_free(&c.comm);
   return nullptr;
 }
 
@@ -81,6 +84,15 @@ Status Adaptor::execute(std::int64_t step, double time, const MeshView& mesh,
     return impl_->execute(step, time, mesh, fields, changes, report);
   } catch (const std::bad_alloc&) {
     return internal("execute", "out of memory");
+  } catch (const std::exception& e) {
+    return internal("execute", e.what());
+  }
+}
+
+Status Adaptor::execute_failed(std::int64_t step, double time, Status error, const Changes& changes,
+                               ExecuteReport* report) {
+  try {
+    return impl_->execute_failed(step, time, std::move(error), changes, report);
   } catch (const std::exception& e) {
     return internal("execute", e.what());
   }

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <new>
+#include <utility>
 
 #include "color_field.hpp"
 #include "input_views.hpp"
@@ -19,19 +19,11 @@ namespace {
 
 Status invalid(std::string message) { return {StatusCode::invalid_argument, std::move(message)}; }
 
-// Runs a stage; whatever it throws (std::bad_alloc, a library's exception) becomes a status, so
-// the rank can still take part in the agreement that follows.
-template <typename Stage>
-Status guarded(const char* name, Stage&& stage) {
-  try {
-    return stage();
-  } catch (const std::bad_alloc&) {
-    return {StatusCode::internal_error, std::string(name) + ": out of memory"};
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string(name) + ": " + e.what()};
-  } catch (...) {
-    return {StatusCode::internal_error, std::string(name) + ": unknown exception"};
-  }
+// A check that failed only for non-finite field values: the field is unusable, the mesh is not,
+// so only the scenes reading that field are skipped.
+bool field_fault(const render::MeshCheck& found) {
+  return !found.error.empty() && found.nonfinite_values > 0 && found.tets_out_of_range == 0 &&
+         found.nonfinite_points == 0;
 }
 
 std::uint64_t peak_rss_bytes() {
@@ -58,6 +50,7 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     scenes_.push_back(std::move(state));
   }
   skipped_.assign(volumes_.size(), 0);
+  skips_.resize(scenes_.size());
   ranges_.scenes.resize(scenes_.size());
 }
 
@@ -69,8 +62,10 @@ Adaptor::Impl::~Impl() {
 }
 
 Status Adaptor::Impl::start() {
-  const Status status = guarded("create", [&] { return prepare_outputs_on_this_rank(); });
-  return agree(comm_, status);
+  const Status status =
+      agree(comm_, guarded("create", [&] { return prepare_outputs_on_this_rank(); }));
+  started_ = status.ok();
+  return status;
 }
 
 Status Adaptor::Impl::prepare_outputs_on_this_rank() {
@@ -104,45 +99,56 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
     s.due = s.clock.due(step, time);
     any_due = any_due || s.due;
   }
+  // Off-trigger: no MPI, and ok on every rank (a writer error waits for the next agreement).
   if (!any_due) {
-    if (report != nullptr) {
-      report->rendered = false;
-      report->scenes_rendered = 0;
-      report->bvh_decision = "none";
-      report->tets_skipped = 0;
-      report->seconds_blocked = blocked.ms() * 1e-3;
-    }
-    return take_writer_error();
+    if (report != nullptr) fill_report(Status::success(), blocked.ms(), *report);
+    return Status::success();
   }
   const Status status = render_step(step, time, mesh, fields);
   const double blocked_ms = blocked.ms();
-  if (report != nullptr) {
-    report->rendered = status.ok();
-    report->scenes_rendered =
-        status.ok() ? static_cast<int>(std::count_if(scenes_.begin(), scenes_.end(),
-                                                     [](const SceneState& s) { return s.due; }))
-                    : 0;
-    report->bvh_decision = bvh_decision_;
-    report->tets_skipped = tets_skipped_;
-    report->seconds_blocked = blocked_ms * 1e-3;
+  if (report != nullptr) fill_report(status, blocked_ms, *report);
+  if (!status.failed() && is_writer() && !config_.output.quiet) {
+    print_progress(step, time, blocked_ms);
   }
-  if (!status.ok()) return status;
-  if (is_writer() && !config_.output.quiet) print_progress(step, time, blocked_ms);
-  return take_writer_error();
+  return status;
+}
+
+// The error becomes this rank's pending one (unless an older one waits): the render step's first
+// agreement reports it, and no view is read.
+Status Adaptor::Impl::execute_failed(std::int64_t step, double time, Status error,
+                                     const Changes& changes, ExecuteReport* report) {
+  if (pending_.ok()) pending_ = std::move(error);
+  return execute(step, time, MeshView{}, {}, changes, report);
+}
+
+void Adaptor::Impl::fill_report(const Status& status, double blocked_ms,
+                                ExecuteReport& report) const {
+  const auto due =
+      std::count_if(scenes_.begin(), scenes_.end(), [](const SceneState& s) { return s.due; });
+  const bool rendered = !status.failed() && due > 0;
+  report.rendered = rendered;
+  report.scenes_rendered = rendered ? static_cast<int>(due) : 0;
+  report.bvh_decision = rendered ? bvh_decision_ : "none";
+  report.tets_skipped = rendered ? tets_skipped_ : 0;
+  report.seconds_blocked = blocked_ms * 1e-3;
+  report.skipped_scenes.clear();
+  if (status.code != StatusCode::partial) return;
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    if (!skips_[k].empty()) report.skipped_scenes.push_back(scenes_[k].config.name);
+  }
 }
 
 Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView& mesh,
                                   std::span<const FieldView> fields) {
-  for (SceneState& s : scenes_) {
-    if (s.due) s.record = StepRecord{.step = step, .time = time, .scene = s.config.name};
-  }
-  bvh_decision_ = "none";
-  tets_skipped_ = 0;
-  local_tets_ = mesh.tets.count;
-  ranges_.clear();
-  Status status = guarded("validation", [&] { return validate(mesh, fields); });
-  status = agree(comm_, status, &ranges_);
+  // A failure this rank met since the last agreement is this step's outcome, on every rank.
+  Status status = guarded("validation", [&] {
+    begin_step(step, time, mesh);
+    Status pending = take_pending_error();
+    return pending.ok() ? validate(mesh, fields) : pending;
+  });
+  status = agree(comm_, status, &ranges_, &skips_);
   if (!status.ok()) return status;
+  drop_skipped_scenes();
   if (!ranges_.points.empty()) origin_ = 0.5 * (ranges_.points.lo() + ranges_.points.hi());
   ranges_.clear();
   status = guarded("BVH update", [&] { return update_volumes(mesh, fields); });
@@ -156,35 +162,94 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   }
   status = agree(comm_, status);
   if (!status.ok()) return status;
-  status = guarded("composite", [&] { return composite_and_submit(); });
-  if (!status.ok()) return status;
+  // Every rank agreed that the step renders: the triggers advance alike on every rank, whatever
+  // the rank-local compositing stage below meets (it is reported at the next agreement).
   for (SceneState& s : scenes_) {
     if (s.due) s.clock.mark_rendered(time);
   }
-  return status;
+  pending_ = guarded("composite", [&] { return composite_and_submit(); });
+  return skipped_status();
+}
+
+void Adaptor::Impl::begin_step(std::int64_t step, double time, const MeshView& mesh) {
+  for (SceneState& s : scenes_) {
+    if (s.due) s.record = StepRecord{.step = step, .time = time, .scene = s.config.name};
+  }
+  bvh_decision_ = "none";
+  tets_skipped_ = 0;
+  local_tets_ = mesh.tets.count;
+  ranges_.clear();
+  std::fill(skips_.begin(), skips_.end(), std::string());
 }
 
 Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> fields) {
   if (std::string e = check_mesh_shape(mesh); !e.empty()) return invalid(e);
-  for (const SceneState& s : scenes_) {
-    if (!s.due) continue;
-    for (const std::string* name : {&s.config.field, &s.config.color_by}) {
-      if (name->empty()) continue;
-      std::string e = check_field_shape(fields, *name, s.config.name, mesh.points.count);
-      if (!e.empty()) return invalid(e);
-    }
-  }
+  if (Status st = check_scene_fields(mesh, fields); !st.ok()) return st;
   const render::Stopwatch ingest;
   if (std::string e = convert_topology(mesh.tets); !e.empty()) return invalid(e);
-  first_due_scene()->record.ingest_ms += ingest.ms();
+  if (SceneState* first = first_due_scene()) first->record.ingest_ms += ingest.ms();
   bool loading = false;
   for (std::size_t v = 0; v < volumes_.size(); ++v) {
-    if (first_due_scene(v) == nullptr || !volumes_[v].stale(epochs_)) continue;
+    if (!needs_check(v)) continue;
     if (Status st = check_volume(v, mesh, fields); !st.ok()) return st;
-    loading = loading || volumes_[v].needs_load(epochs_);
+    loading = loading || (first_due_scene(v) != nullptr && volumes_[v].needs_load(epochs_));
   }
   if (loading) add_point_bounds(mesh.points, ranges_.points);
   return Status::success();
+}
+
+// A field a due scene needs but that was not passed skips the scene (a rank without tets need
+// not pass any); a passed field of the wrong shape is the caller's error.
+Status Adaptor::Impl::check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields) {
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    const SceneState& s = scenes_[k];
+    for (const std::string* name : {&s.config.field, &s.config.color_by}) {
+      if (!s.due || name->empty()) continue;
+      std::string e = missing_field(fields, *name, s.config.name, mesh.tets.count);
+      if (!e.empty()) {
+        skip(k, std::move(e));
+        continue;
+      }
+      e = check_field_shape(fields, *name, mesh.points.count);
+      if (!e.empty()) return invalid(e);
+    }
+  }
+  return Status::success();
+}
+
+// A stale volume, or one of a scene skipped last time (its fields may still be bad although
+// nothing the volume reads changed since it was last updated for the other scenes).
+bool Adaptor::Impl::needs_check(std::size_t v) {
+  if (first_due_scene(v) == nullptr) return false;
+  if (volumes_[v].stale(epochs_)) return true;
+  return std::any_of(scenes_.begin(), scenes_.end(),
+                     [&](const SceneState& s) { return s.due && s.volume == v && s.skipped_last; });
+}
+
+void Adaptor::Impl::skip(std::size_t scene, std::string reason) {
+  skips_[scene] = std::move(reason);
+  scenes_[scene].due = false;
+}
+
+// After the agreement: a scene some rank skipped is skipped on every rank.
+void Adaptor::Impl::drop_skipped_scenes() {
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    SceneState& s = scenes_[k];
+    const bool skipped = !skips_[k].empty();
+    if (skipped || s.due) s.skipped_last = skipped;
+    if (skipped) s.due = false;
+  }
+}
+
+Status Adaptor::Impl::skipped_status() const {
+  std::string message;
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    if (skips_[k].empty()) continue;
+    if (!message.empty()) message += "; ";
+    message += "scene '" + scenes_[k].config.name + "' skipped: " + skips_[k];
+  }
+  if (message.empty()) return Status::success();
+  return {StatusCode::partial, std::move(message)};
 }
 
 std::string Adaptor::Impl::convert_topology(const TetsView& tets) {
@@ -206,25 +271,41 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
   FieldVolume& volume = volumes_[v];
   const render::PointSource points = point_source(mesh.points);
   const CheckedIndices now{epochs_.topology, mesh.points.count};
+  // Empty when usable; else the finding, with code partial when only the field is at fault.
   const auto check = [&](const std::string& name, std::vector<std::uint8_t>& keep) {
     const bool indices_known =
         checked_indices_.topology == now.topology && checked_indices_.points == now.points;
     const render::MeshCheck found =
         render::check_mesh(tets_, points, field_source(field_or_empty(fields, name)),
                            config_.nonfinite, keep, !indices_known);
-    if (!found.error.empty()) return invalid("mesh with field '" + name + "': " + found.error);
-    checked_indices_ = now;
-    return Status::success();
+    if (found.error.empty()) {
+      checked_indices_ = now;
+      return Status::success();
+    }
+    return Status{field_fault(found) ? StatusCode::partial : StatusCode::invalid_argument,
+                  "mesh with field '" + name + "': " + found.error};
   };
-  if (Status st = check(volume.field(), volume.keep()); !st.ok()) return st;
-  for (const SceneState& s : scenes_) {
-    if (!s.due || s.volume != v || s.config.color_by.empty() ||
-        s.config.color_by == volume.field()) {
+  // Partial: only the field is at fault. A faulty isosurface field skips every scene of the
+  // volume, a faulty color field only its scene.
+  const Status volume_check = check(volume.field(), volume.keep());
+  if (volume_check.failed()) return volume_check;
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    const SceneState& s = scenes_[k];
+    if (!s.due || s.volume != v) continue;
+    if (!volume_check.ok()) {
+      skip(k, volume_check.message);
       continue;
     }
-    if (Status st = check(s.config.color_by, color_keep_); !st.ok()) return st;
+    if (s.config.color_by.empty() || s.config.color_by == volume.field()) continue;
+    const Status color_check = check(s.config.color_by, color_keep_);
+    if (color_check.failed()) return color_check;
+    if (!color_check.ok()) {
+      skip(k, color_check.message);
+      continue;
+    }
     for (std::size_t t = 0; t < color_keep_.size(); ++t) volume.keep()[t] &= color_keep_[t];
   }
+  if (first_due_scene(v) == nullptr) return Status::success();
   const bool skipping = config_.nonfinite == render::NonFinitePolicy::skip_tets;
   skipped_[v] = skipping ? count_zeros(volume.keep()) : 0;
   drop_ghost_tets(mesh.tets.ghost, volume.keep());
@@ -395,19 +476,31 @@ void Adaptor::Impl::print_progress(std::int64_t step, double time, double blocke
   std::fflush(stdout);
 }
 
-Status Adaptor::Impl::take_writer_error() {
-  if (!writer_ || !writer_->has_error()) return Status::success();
-  return {StatusCode::io_error, writer_->take_error()};
+Status Adaptor::Impl::take_pending_error() {
+  Status pending = std::exchange(pending_, Status::success());
+  if (pending.ok() && writer_ && writer_->has_error()) {
+    pending = {StatusCode::io_error, writer_->take_error()};
+  }
+  return pending;
 }
 
+// Collective (for a started adaptor): the writer rank drains its queue, and every rank gets the
+// writer's last errors and its own pending one.
 Status Adaptor::Impl::finalize() {
   if (finalized_) return Status::success();
   finalized_ = true;
-  if (!writer_) return Status::success();
-  writer_->drain();
-  Status status = take_writer_error();
-  writer_.reset();
-  return status;
+  if (!started_) return Status::success();
+  const Status status = guarded("finalize", [&] {
+    if (writer_) writer_->drain();
+    Status pending = take_pending_error();
+    writer_.reset();
+    return pending;
+  });
+  int mpi_finalized = 0;
+  MPI_Finalized(&mpi_finalized);
+  // Destroyed after MPI_Finalize without a finalize call: nothing to agree with.
+  if (mpi_finalized) return status;
+  return agree(comm_, status);
 }
 
 }  // namespace tetray

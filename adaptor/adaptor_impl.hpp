@@ -27,12 +27,15 @@ class Adaptor::Impl {
   ~Impl();
 
   // Collective: the writer rank creates the output directories and logs (every rank its own
-  // per-rank image directories); every rank gets the outcome.
+  // per-rank image directories); every rank gets the outcome. Only a started adaptor's finalize
+  // is collective.
   Status start();
 
   bool will_render(std::int64_t step, double time) const;
   Status execute(std::int64_t step, double time, const MeshView& mesh,
                  std::span<const FieldView> fields, const Changes& changes, ExecuteReport* report);
+  Status execute_failed(std::int64_t step, double time, Status error, const Changes& changes,
+                        ExecuteReport* report);
   Status finalize();
 
  private:
@@ -43,7 +46,8 @@ class Adaptor::Impl {
     TriggerClock clock;
     std::size_t volume = 0;                      // index into volumes_
     const render::Colormap* colormap = nullptr;  // null without color_by
-    bool due = false;
+    bool due = false;                            // this step; cleared when the scene is skipped
+    bool skipped_last = false;  // at its last due step: its inputs are checked again
     render::ValueRange color_range;
     render::Framebuffer image;
     StepRecord record;
@@ -53,11 +57,18 @@ class Adaptor::Impl {
 
   // The stages of a render step (docs/architecture.md §2); each returns what went wrong on this
   // rank, and render_step agrees on the outcome across ranks before every collective stage.
+  // A fault of one scene's field skips that scene (on every rank) and the step goes on.
   Status render_step(std::int64_t step, double time, const MeshView& mesh,
                      std::span<const FieldView> fields);
+  void begin_step(std::int64_t step, double time, const MeshView& mesh);
   Status validate(const MeshView& mesh, std::span<const FieldView> fields);
+  Status check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields);
   std::string convert_topology(const TetsView& tets);
+  bool needs_check(std::size_t v);
   Status check_volume(std::size_t v, const MeshView& mesh, std::span<const FieldView> fields);
+  void skip(std::size_t scene, std::string reason);
+  void drop_skipped_scenes();
+  Status skipped_status() const;
   Status update_volumes(const MeshView& mesh, std::span<const FieldView> fields);
   Status global_inputs(std::span<const FieldView> fields);
   Status trace_scenes(std::span<const FieldView> fields);
@@ -70,13 +81,15 @@ class Adaptor::Impl {
   SceneState* first_due_scene(std::size_t v = kAnyVolume);
   render::Camera camera_for(const SceneState& s, const SceneRanges& ranges) const;
   void print_progress(std::int64_t step, double time, double blocked_ms) const;
-  Status take_writer_error();
+  void fill_report(const Status& status, double blocked_ms, ExecuteReport& report) const;
+  Status take_pending_error();
 
   Communicator comm_;
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
   std::vector<std::uint64_t> skipped_;  // per volume, at its last check
+  SceneSkips skips_;                    // per scene, this step
   ChangeEpochs epochs_{};
   StepRanges ranges_;
 
@@ -99,6 +112,11 @@ class Adaptor::Impl {
   std::uint64_t tets_skipped_ = 0;
 
   std::unique_ptr<ImageWriter> writer_;  // on the writer rank only
+  // A failure of this rank after the step's last agreement (compositing, handing the image to
+  // the writer): reported at the next agreement, with the writer's errors, so that every rank
+  // returns the same status from each call.
+  Status pending_;
+  bool started_ = false;
   bool finalized_ = false;
 };
 

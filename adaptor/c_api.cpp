@@ -18,6 +18,8 @@ struct tetray_adaptor {
 
 namespace {
 
+// The message of this thread's last call: every call sets it, so an old one never outlives a
+// later success.
 thread_local std::string last_error;
 
 int fail(tetray::StatusCode code, std::string message) {
@@ -25,8 +27,13 @@ int fail(tetray::StatusCode code, std::string message) {
   return static_cast<int>(code);
 }
 
+int succeed() {
+  last_error.clear();
+  return TETRAY_OK;
+}
+
 int finish(const tetray::Status& status) {
-  if (status.ok()) return TETRAY_OK;
+  if (status.ok()) return succeed();
   return fail(status.code, status.message);
 }
 
@@ -45,7 +52,7 @@ int create(Make&& make, tetray_adaptor** out) {
     auto adaptor = make(status);
     if (!adaptor) return finish(status);
     *out = new tetray_adaptor{std::move(adaptor), {}, {}, {}, {}};
-    return TETRAY_OK;
+    return succeed();
   } catch (const std::exception& e) {
     return fail(tetray::StatusCode::internal_error, std::string("create: ") + e.what());
   }
@@ -108,7 +115,7 @@ int tetray_set_mesh(tetray_adaptor* a, const void* xyz, int xyz_type, int64_t po
   a->mesh.tets = {connectivity,
                   index_type == TETRAY_INT32 ? tetray::IndexType::int32 : tetray::IndexType::int64,
                   static_cast<std::size_t>(tet_count), ghost, global_ids};
-  return TETRAY_OK;
+  return succeed();
 }
 
 int tetray_set_field(tetray_adaptor* a, const char* name, const void* values, int type,
@@ -128,7 +135,7 @@ int tetray_set_field(tetray_adaptor* a, const char* name, const void* values, in
       for (std::size_t i = 0; i < a->fields.size(); ++i) a->fields[i].name = a->field_names[i];
     }
     a->fields[k] = {a->field_names[k], values, scalar(type), static_cast<std::size_t>(count)};
-    return TETRAY_OK;
+    return succeed();
   } catch (const std::exception& e) {
     return fail(tetray::StatusCode::internal_error, std::string("tetray_set_field: ") + e.what());
   }
@@ -138,7 +145,16 @@ int tetray_clear_fields(tetray_adaptor* a) {
   if (a == nullptr) return no_handle("tetray_clear_fields");
   a->fields.clear();
   a->field_names.clear();
-  return TETRAY_OK;
+  return succeed();
+}
+
+int tetray_will_render(const tetray_adaptor* a, int64_t step, double time, int* will_render) {
+  if (a == nullptr) return no_handle("tetray_will_render");
+  if (will_render == nullptr) {
+    return fail(tetray::StatusCode::invalid_argument, "tetray_will_render: will_render is NULL");
+  }
+  *will_render = a->adaptor->will_render(step, time) ? 1 : 0;
+  return succeed();
 }
 
 int tetray_execute(tetray_adaptor* a, int64_t step, double time, int changes) {
@@ -157,7 +173,21 @@ int tetray_get_report(const tetray_adaptor* a, tetray_report* report) {
   report->scenes_rendered = a->report.scenes_rendered;
   report->seconds_blocked = a->report.seconds_blocked;
   report->tets_skipped = a->report.tets_skipped;
-  return TETRAY_OK;
+  report->scenes_skipped = static_cast<int>(a->report.skipped_scenes.size());
+  report->bvh_decision = a->report.bvh_decision.c_str();
+  return succeed();
+}
+
+int tetray_get_skipped_scene(const tetray_adaptor* a, int index, const char** name) {
+  if (a == nullptr) return no_handle("tetray_get_skipped_scene");
+  const auto& skipped = a->report.skipped_scenes;
+  if (name == nullptr || index < 0 || static_cast<std::size_t>(index) >= skipped.size()) {
+    return fail(tetray::StatusCode::invalid_argument,
+                "tetray_get_skipped_scene: needs a name pointer and 0 <= index < " +
+                    std::to_string(skipped.size()));
+  }
+  *name = skipped[static_cast<std::size_t>(index)].c_str();
+  return succeed();
 }
 
 int tetray_finalize(tetray_adaptor* a) {

@@ -36,11 +36,35 @@ int broadcast_status(const Communicator& c, int root, Status& status) {
   return MPI_Bcast(status.message.data(), static_cast<int>(head[1]), MPI_CHAR, root, c.comm);
 }
 
-Status agree(const Communicator& c, const Status& local, StepRanges* ranges) {
+namespace {
+
+// A flag per rank as a range: the union over the ranks holds the lowest flagged rank.
+render::ValueRange flag(bool raised, int rank) {
+  render::ValueRange r;
+  if (raised) r.include(rank);
+  return r;
+}
+
+// `root`'s text on every rank, prefixed with "rank <root>: ".
+Status share_from(const Communicator& c, int root, Status& text) {
+  if (int rc = broadcast_status(c, root, text); rc != MPI_SUCCESS) {
+    return {StatusCode::mpi_error,
+            "sharing rank " + std::to_string(root) + "'s error: " + mpi_error_text(rc)};
+  }
+  text.message = "rank " + std::to_string(root) + ": " + text.message;
+  return Status::success();
+}
+
+}  // namespace
+
+Status agree(const Communicator& c, const Status& local, StepRanges* ranges, SceneSkips* skips) {
   if (c.size == 1) return local;
-  // The lowest failing rank, as the union of the failing ranks' numbers, travels first.
-  std::vector<render::ValueRange> packed(1);
-  if (!local.ok()) packed[0].include(c.rank);
+  // The lowest failing rank and, per scene, the lowest rank that skips it travel first.
+  std::vector<render::ValueRange> packed{flag(!local.ok(), c.rank)};
+  const std::size_t scene_count = skips != nullptr ? skips->size() : 0;
+  for (std::size_t k = 0; k < scene_count; ++k) {
+    packed.push_back(flag(!(*skips)[k].empty(), c.rank));
+  }
   if (ranges != nullptr) {
     const std::vector<render::ValueRange> own = pack(*ranges);
     packed.insert(packed.end(), own.begin(), own.end());
@@ -48,15 +72,20 @@ Status agree(const Communicator& c, const Status& local, StepRanges* ranges) {
   if (int rc = render::global_ranges(packed, c.comm); rc != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "agreeing on the step's outcome: " + mpi_error_text(rc)};
   }
-  if (ranges != nullptr) unpack(std::span(packed).subspan(1), *ranges);
-  if (packed[0].empty()) return Status::success();
-  const int root = static_cast<int>(packed[0].lo);
-  Status status = local;
-  if (int rc = broadcast_status(c, root, status); rc != MPI_SUCCESS) {
-    return {StatusCode::mpi_error,
-            "sharing rank " + std::to_string(root) + "'s error: " + mpi_error_text(rc)};
+  if (ranges != nullptr) unpack(std::span(packed).subspan(1 + scene_count), *ranges);
+  for (std::size_t k = 0; k < scene_count; ++k) {
+    if (packed[1 + k].empty()) continue;
+    Status reason{StatusCode::partial, (*skips)[k]};
+    if (Status shared = share_from(c, static_cast<int>(packed[1 + k].lo), reason); !shared.ok()) {
+      return shared;
+    }
+    (*skips)[k] = std::move(reason.message);
   }
-  status.message = "rank " + std::to_string(root) + ": " + status.message;
+  if (packed[0].empty()) return Status::success();
+  Status status = local;
+  if (Status shared = share_from(c, static_cast<int>(packed[0].lo), status); !shared.ok()) {
+    return shared;
+  }
   return status;
 }
 

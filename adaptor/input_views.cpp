@@ -53,16 +53,19 @@ std::string check_mesh_shape(const MeshView& mesh) {
   return {};
 }
 
+std::string missing_field(std::span<const FieldView> fields, std::string_view name,
+                          std::string_view scene, std::size_t tet_count) {
+  if (tet_count == 0 || find_field(fields, name) != nullptr) return {};
+  std::string passed;
+  for (const FieldView& f : fields) passed += (passed.empty() ? "" : ", ") + std::string(f.name);
+  return "field '" + std::string(name) + "' used by scene '" + std::string(scene) +
+         "' was not passed to execute (passed: " + (passed.empty() ? "none" : passed) + ")";
+}
+
 std::string check_field_shape(std::span<const FieldView> fields, std::string_view name,
-                              std::string_view scene, std::size_t point_count) {
+                              std::size_t point_count) {
   const FieldView* field = find_field(fields, name);
-  if (field == nullptr && point_count == 0) return {};
-  if (field == nullptr) {
-    std::string passed;
-    for (const FieldView& f : fields) passed += (passed.empty() ? "" : ", ") + std::string(f.name);
-    return "field '" + std::string(name) + "' used by scene '" + std::string(scene) +
-           "' was not passed to execute (passed: " + (passed.empty() ? "none" : passed) + ")";
-  }
+  if (field == nullptr) return {};
   if (field->count != point_count) {
     return "field '" + std::string(name) + "' has " + std::to_string(field->count) +
            " values but the mesh has " + std::to_string(point_count) + " points";

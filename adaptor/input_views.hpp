@@ -22,10 +22,14 @@ FieldView field_or_empty(std::span<const FieldView> fields, std::string_view nam
 // Empty when the mesh views are usable, else what is wrong with them.
 std::string check_mesh_shape(const MeshView& mesh);
 
-// Empty when `name` (used by `scene`) was passed with one value per point, or the rank has no
-// points.
+// Empty when `name` (used by `scene`) was passed, or the rank has no tets (nothing to render it
+// on); else what is missing and which fields were passed.
+std::string missing_field(std::span<const FieldView> fields, std::string_view name,
+                          std::string_view scene, std::size_t tet_count);
+
+// Empty when `name` was not passed or has one value per point.
 std::string check_field_shape(std::span<const FieldView> fields, std::string_view name,
-                              std::string_view scene, std::size_t point_count);
+                              std::size_t point_count);
 
 render::PointSource point_source(const PointsView& points);
 render::FieldSource field_source(const FieldView& field);

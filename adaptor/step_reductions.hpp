@@ -1,11 +1,12 @@
-// What the ranks of a render step combine, by name: the global ranges every rank needs (agreed
-// together with the step's outcome, in one allreduce: collective.hpp) and the log counters the
-// writer rank sums. Each travels as one flat array; pack and unpack are the only places that
-// know its layout.
+// What the ranks of a render step combine, by name: the global ranges every rank needs and the
+// scenes some rank skips (agreed together with the step's outcome, in one allreduce:
+// collective.hpp) and the log counters the writer rank sums. Each travels as one flat array;
+// pack and unpack are the only places that know its layout.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "render/core/value_bounds.hpp"
@@ -27,6 +28,10 @@ struct StepRanges {
 std::vector<render::ValueRange> pack(const StepRanges& ranges);
 // `ranges` must have the scene count of the packed value.
 void unpack(std::span<const render::ValueRange> packed, StepRanges& ranges);
+
+// Per scene, why this rank cannot render it this step (empty: it can). Agreed with a stage's
+// outcome: a scene skipped on one rank is skipped on all, since its image would be incomplete.
+using SceneSkips = std::vector<std::string>;
 
 // Per scene, summed over the ranks for the timing log.
 struct SceneCounters {

@@ -9,17 +9,26 @@ Status execute(Adaptor& adaptor, std::int64_t step, double time, vtkUnstructured
                const Changes& changes, ExecuteReport* report) {
   if (!adaptor.will_render(step, time)) return adaptor.execute(step, time, {}, {}, changes, report);
   try {
-    if (grid == nullptr) return {StatusCode::invalid_argument, "VTK bridge: the grid is null"};
+    // A failure here is this rank's alone: execute_failed keeps the other ranks from waiting.
+    if (grid == nullptr) {
+      return adaptor.execute_failed(step, time,
+                                    {StatusCode::invalid_argument, "VTK bridge: the grid is null"},
+                                    changes, report);
+    }
     vtkio::TetGrid converted;
     std::string error;
     if (!vtkio::from_vtk(grid, converted, error)) {
-      return {StatusCode::invalid_argument, "VTK bridge: " + error};
+      return adaptor.execute_failed(
+          step, time, {StatusCode::invalid_argument, "VTK bridge: " + error}, changes, report);
     }
     return execute(adaptor, step, time, converted, changes, report);
   } catch (const std::bad_alloc&) {
-    return {StatusCode::internal_error, "VTK bridge: out of memory"};
+    return adaptor.execute_failed(
+        step, time, {StatusCode::internal_error, "VTK bridge: out of memory"}, changes, report);
   } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("VTK bridge: ") + e.what()};
+    return adaptor.execute_failed(
+        step, time, {StatusCode::internal_error, std::string("VTK bridge: ") + e.what()}, changes,
+        report);
   }
 }
 

@@ -10,7 +10,7 @@ module tetray
 
   integer(c_int), parameter, public :: TETRAY_OK = 0, TETRAY_INVALID_ARGUMENT = 1, &
     TETRAY_CONFIG_ERROR = 2, TETRAY_IO_ERROR = 3, TETRAY_MPI_ERROR = 4, &
-    TETRAY_INTERNAL_ERROR = 5, TETRAY_NOT_INITIALIZED = 6
+    TETRAY_INTERNAL_ERROR = 5, TETRAY_NOT_INITIALIZED = 6, TETRAY_PARTIAL = 7
   integer(c_int), parameter, public :: TETRAY_FLOAT32 = 0, TETRAY_FLOAT64 = 1
   integer(c_int), parameter, public :: TETRAY_INT32 = 0, TETRAY_INT64 = 1
   integer(c_int), parameter, public :: TETRAY_CHANGED_GEOMETRY = 1, TETRAY_CHANGED_TOPOLOGY = 2, &
@@ -21,10 +21,13 @@ module tetray
     integer(c_int) :: scenes_rendered
     real(c_double) :: seconds_blocked
     integer(c_int64_t) :: tets_skipped
+    integer(c_int) :: scenes_skipped
+    type(c_ptr) :: bvh_decision  ! read it with tetray_bvh_decision(report)
   end type
 
   public :: tetray_create, tetray_create_from_yaml, tetray_set_mesh, tetray_set_field, &
-    tetray_clear_fields, tetray_execute, tetray_get_report, tetray_finalize, tetray_destroy, &
+    tetray_clear_fields, tetray_will_render, tetray_execute, tetray_get_report, &
+    tetray_skipped_scene, tetray_bvh_decision, tetray_finalize, tetray_destroy, &
     tetray_error_message
 
   interface
@@ -66,6 +69,15 @@ module tetray
       type(c_ptr), value :: handle
     end function
 
+    integer(c_int) function tetray_will_render(handle, step, time, will_render) &
+        bind(c, name="tetray_will_render")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: handle
+      integer(c_int64_t), value :: step
+      real(c_double), value :: time
+      integer(c_int), intent(out) :: will_render
+    end function
+
     integer(c_int) function tetray_execute(handle, step, time, changes) &
         bind(c, name="tetray_execute")
       import :: c_int, c_int64_t, c_double, c_ptr
@@ -79,6 +91,14 @@ module tetray
       import :: c_int, c_ptr, tetray_report
       type(c_ptr), value :: handle
       type(tetray_report), intent(out) :: report
+    end function
+
+    integer(c_int) function c_get_skipped_scene(handle, index, name) &
+        bind(c, name="tetray_get_skipped_scene")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: handle
+      integer(c_int), value :: index
+      type(c_ptr), intent(out) :: name
     end function
 
     integer(c_int) function tetray_finalize(handle) bind(c, name="tetray_finalize")
@@ -126,18 +146,47 @@ contains
     tetray_set_field = c_set_field(handle, trim(name)//c_null_char, values, type, count)
   end function
 
-  ! The message of the last failed call on this thread.
+  ! Skipped scene `index` (0-based, below report%scenes_skipped) of the last tetray_execute.
+  integer(c_int) function tetray_skipped_scene(handle, index, name)
+    type(c_ptr), intent(in) :: handle
+    integer(c_int), intent(in) :: index
+    character(len=:), allocatable, intent(out) :: name
+    type(c_ptr) :: text
+    tetray_skipped_scene = c_get_skipped_scene(handle, index, text)
+    if (tetray_skipped_scene == TETRAY_OK) then
+      name = fortran_string(text)
+    else
+      name = ""
+    end if
+  end function
+
+  function tetray_bvh_decision(report) result(decision)
+    type(tetray_report), intent(in) :: report
+    character(len=:), allocatable :: decision
+    decision = fortran_string(report%bvh_decision)
+  end function
+
+  ! The message of the last call on this thread ("" when it returned TETRAY_OK).
   function tetray_error_message() result(message)
     character(len=:), allocatable :: message
+    message = fortran_string(c_last_error())
+  end function
+
+  ! A copy of a NUL-terminated C string ("" for a null pointer).
+  function fortran_string(text) result(copy)
+    type(c_ptr), intent(in) :: text
+    character(len=:), allocatable :: copy
     character(kind=c_char), pointer :: chars(:)
-    type(c_ptr) :: text
     integer :: i, n
-    text = c_last_error()
+    if (.not. c_associated(text)) then
+      copy = ""
+      return
+    end if
     n = int(c_strlen(text))
     call c_f_pointer(text, chars, [n])
-    allocate(character(len=n) :: message)
+    allocate(character(len=n) :: copy)
     do i = 1, n
-      message(i:i) = chars(i)
+      copy(i:i) = chars(i)
     end do
   end function
 

@@ -129,6 +129,9 @@ class Run {
     return ok;
   }
 
+  // False when the adaptor failed. Its status is the same on every rank, so every rank leaves
+  // the time loop at the same step (a rank that went on alone would wait forever in the next
+  // halo exchange). A partial step (some scenes skipped) is reported and the run goes on.
   bool execute(int step, double time, const std::vector<tetray::FieldView>& fields) {
     tetray::MeshView view;
     view.points = tetray::PointsView::of(std::span<const double>(mesh_.points));
@@ -141,7 +144,7 @@ class Run {
     seconds_in_adaptor_ += report.seconds_blocked;
     rendered_ += report.rendered ? 1 : 0;
     if (!status.ok()) say(comm_, "tetray: " + status.message);
-    return status.ok();
+    return !status.failed();
   }
 
   const SolverConfig& config_;
@@ -218,11 +221,10 @@ int run_simulation(const std::string& config_path, MPI_Comm world) {
   if (physics->elastic) report_time_step(*physics->elastic, config.elasticity->setup, comm);
   Run run(config, mesh, comm, std::move(*physics), *adaptor);
   const int code = run.loop();
+  // Collective, so every rank gets the writer's last errors and exits with the same code.
   const tetray::Status finalized = adaptor->finalize();
-  if (!finalized.ok()) {
-    say(comm, "tetray finalize: " + finalized.message);
-    return code == exit_ok ? exit_adaptor : code;
-  }
+  if (!finalized.ok()) say(comm, "tetray finalize: " + finalized.message);
+  if (finalized.failed() && code == exit_ok) return exit_adaptor;
   return code;
 }
 

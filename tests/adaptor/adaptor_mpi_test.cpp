@@ -10,6 +10,7 @@
 #include <set>
 
 #include "plane_scene.hpp"
+#include "shared_dir.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
@@ -18,45 +19,6 @@ namespace tetray::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-// A directory made by rank 0, known to every rank, removed by rank 0 once all are done.
-class SharedDir {
- public:
-  explicit SharedDir(const std::string& name) {
-    char path[256] = {};
-    if (rank() == 0) {
-      const fs::path dir =
-          fs::temp_directory_path() / ("tetray_mpi_" + std::to_string(::getpid()) + name);
-      fs::remove_all(dir);
-      fs::create_directories(dir);
-      std::snprintf(path, sizeof path, "%s", dir.c_str());
-    }
-    MPI_Bcast(path, sizeof path, MPI_CHAR, 0, MPI_COMM_WORLD);
-    path_ = path;
-  }
-  ~SharedDir() {
-    MPI_Barrier(MPI_COMM_WORLD);
-    if (rank() == 0) fs::remove_all(path_);
-  }
-  SharedDir(const SharedDir&) = delete;
-  SharedDir& operator=(const SharedDir&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
-
-int world_size() {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
 
 std::unique_ptr<Adaptor> make(MPI_Comm comm, const std::string& dir,
                               const std::string& output_keys = "",

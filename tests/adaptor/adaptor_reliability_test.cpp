@@ -16,7 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One adaptor writing inline (queue depth 0), so a write error shows in the same call.
+// One adaptor writing inline (queue depth 0), so a write error is met within the call that
+// renders the image (after its last agreement: the next render step reports it).
 class Reliability : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -98,13 +99,19 @@ TEST_F(Reliability, NonFiniteValueUnderErrorPolicy) {
   expect_recovery(2);
 }
 
-TEST_F(Reliability, MissingField) {
+// The only scene is skipped: the call completes (partial), renders nothing, and says why.
+TEST_F(Reliability, MissingFieldSkipsItsScene) {
   const std::vector<FieldView> only_g = {FieldView::of("g", std::span<const double>(scene_.g))};
   const Status status = execute(scene_, 1, only_g);
-  EXPECT_EQ(status.code, StatusCode::invalid_argument);
-  EXPECT_NE(status.message.find("field 'f'"), std::string::npos) << status.message;
+  EXPECT_EQ(status.code, StatusCode::partial);
+  EXPECT_FALSE(status.failed());
+  EXPECT_EQ(status.message.rfind("scene 'plane' skipped: field 'f'", 0), 0u) << status.message;
   EXPECT_NE(status.message.find("passed: g"), std::string::npos) << status.message;
+  EXPECT_EQ(report_.skipped_scenes, std::vector<std::string>{"plane"});
+  EXPECT_FALSE(report_.rendered);
+  EXPECT_FALSE(fs::exists(png(1)));
   expect_recovery(2);
+  EXPECT_TRUE(report_.skipped_scenes.empty());
 }
 
 TEST_F(Reliability, MismatchedArraySizes) {
@@ -151,19 +158,23 @@ TEST_F(Reliability, FullDisk) {
     while (filler.write(block.data(), static_cast<std::streamsize>(block.size()))) {
     }
   }
+  // The write fails after the step's last agreement: the next render step reports it.
   status = a->execute(1, 1, scene_.view(), fields);
-  EXPECT_EQ(status.code, StatusCode::io_error);
-  EXPECT_NE(status.message.find(mount_point.string()), std::string::npos) << status.message;
+  EXPECT_TRUE(status.ok()) << status.message;
   EXPECT_EQ(slurp(first), first_bytes);
   EXPECT_EQ(slurp(mount_point / "tetray_log.csv"), log_before);
   fs::remove(mount_point / "filler");
   status = a->execute(2, 2, scene_.view(), fields);
+  EXPECT_EQ(status.code, StatusCode::io_error);
+  EXPECT_NE(status.message.find(mount_point.string()), std::string::npos) << status.message;
+  EXPECT_FALSE(fs::exists(mount_point / "plane" / "plane_000002.png"));
+  status = a->execute(3, 3, scene_.view(), fields);
   EXPECT_TRUE(status.ok()) << status.message;
-  EXPECT_TRUE(fs::exists(mount_point / "plane" / "plane_000002.png"));
+  EXPECT_TRUE(fs::exists(mount_point / "plane" / "plane_000003.png"));
   EXPECT_TRUE(a->finalize().ok());
 }
 
-TEST_F(Reliability, WriterThreadErrorReachesTheNextCall) {
+TEST_F(Reliability, WriterThreadErrorReachesFinalize) {
   Status status;
   const fs::path out = dir_.path() / "async";
   auto a = Adaptor::create_from_yaml(MPI_COMM_WORLD, plane_config(out.string()), status);
@@ -173,10 +184,10 @@ TEST_F(Reliability, WriterThreadErrorReachesTheNextCall) {
   std::ofstream(out / "plane") << "not a directory";
   const auto fields = scene_.fields();
   status = a->execute(0, 0, scene_.view(), fields);
+  EXPECT_TRUE(status.ok()) << status.message;
   const Status finalized = a->finalize();
-  const Status& reported = status.ok() ? finalized : status;
-  EXPECT_EQ(reported.code, StatusCode::io_error);
-  EXPECT_NE(reported.message.find("plane_000000"), std::string::npos) << reported.message;
+  EXPECT_EQ(finalized.code, StatusCode::io_error);
+  EXPECT_NE(finalized.message.find("plane_000000"), std::string::npos) << finalized.message;
 }
 
 TEST_F(Reliability, PerRankImageErrorIsTheStepsStatus) {

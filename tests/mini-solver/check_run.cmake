@@ -1,5 +1,6 @@
 # The ctest command of one tetray-minisolver run (tests/solver/CMakeLists.txt passes the -D
-# values): runs it under mpirun, checks its exit code and output, and, for a run that should
+# values): runs it under mpirun (each rank through WRAPPER, a command prefix, when given), checks
+# its exit code and output, and, for a run that should
 # succeed, every file docs/architecture.md §3 says it owes, for each scene of the config and each step the
 # trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
 # else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv.
@@ -116,15 +117,18 @@ endfunction()
 file(REMOVE_RECURSE ${OUT_DIR})  # files of an earlier run must not pass the checks
 # The launch flags of tetray_add_mpi_test (tests/CMakeLists.txt).
 execute_process(
-  COMMAND ${MPIEXEC} ${NUMPROC_FLAG} ${NP} --oversubscribe --allow-run-as-root ${EXE} ${CONFIG}
+  COMMAND ${MPIEXEC} ${NUMPROC_FLAG} ${NP} --oversubscribe --allow-run-as-root ${WRAPPER} ${EXE}
+          ${CONFIG}
   RESULT_VARIABLE code OUTPUT_VARIABLE output ERROR_VARIABLE output)
 message("${output}")
 if(NOT code STREQUAL EXIT_CODE)
   fail("exit code ${code}, expected ${EXIT_CODE}")
 endif()
-if(DEFINED OUTPUT AND NOT output MATCHES "${OUTPUT}")
-  fail("the output does not match ${OUTPUT}")
-endif()
+foreach(regex IN LISTS OUTPUT)
+  if(NOT output MATCHES "${regex}")
+    fail("the output does not match ${regex}")
+  endif()
+endforeach()
 if(EXIT_CODE EQUAL 0)
   check_outputs()
 else()

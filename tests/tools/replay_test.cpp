@@ -1,5 +1,6 @@
 // tetray-replay on a series this test writes: a .pvd of three .vtu steps of the plane scene
-// whose isovalue field moves, and the same files given as a list.
+// whose isovalue field moves, and the same files given as a list; a series with a step that
+// cannot be read, and one whose second scene's field is missing from a step.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -16,16 +17,23 @@ namespace {
 namespace fs = std::filesystem;
 
 // Step k carries f = z - 0.5 k: the square z = 0.25 + 0.5 k, out of the box from k = 2 on.
-std::vector<std::string> write_series(const ScratchDir& dir) {
+vtkio::TetGrid moving_plane(const PlaneScene& scene, int k) {
+  vtkio::TetGrid grid;
+  grid.points = scene.mesh.points;
+  grid.tets = scene.mesh.tets;
+  for (double z : scene.f) grid.point_fields["f"].push_back(z - 0.5 * k);
+  return grid;
+}
+
+// Three steps, the grid of step k from make(scene, k), as step<k>.vtu and series.pvd.
+template <typename Make = decltype(&moving_plane)>
+std::vector<std::string> write_series(const ScratchDir& dir, Make&& make = moving_plane) {
   const PlaneScene scene = make_plane_scene(4);
   std::vector<std::string> files;
   std::ofstream pvd(dir / "series.pvd");
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (int k = 0; k < 3; ++k) {
-    vtkio::TetGrid grid;
-    grid.points = scene.mesh.points;
-    grid.tets = scene.mesh.tets;
-    for (double z : scene.f) grid.point_fields["f"].push_back(z - 0.5 * k);
+    const vtkio::TetGrid grid = make(scene, k);
     const std::string name = "step" + std::to_string(k) + ".vtu";
     std::string error;
     EXPECT_TRUE(vtkio::write_vtu(dir / name, grid, error)) << error;
@@ -36,10 +44,16 @@ std::vector<std::string> write_series(const ScratchDir& dir) {
   return files;
 }
 
-std::string write_config(const ScratchDir& dir, const std::string& out) {
+std::string write_config(const ScratchDir& dir, const std::string& out,
+                         const std::string& scene_lines = "") {
   const std::string path = dir / (out + ".yaml");
-  std::ofstream(path) << plane_config(dir / out, ", formats: [png]");
+  std::ofstream(path) << plane_config(dir / out, ", formats: [png]", "", scene_lines);
   return path;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 void expect_moving_plane(const std::string& log_path) {
@@ -74,6 +88,59 @@ TEST(Replay, RendersAListOfFilesAndFailsOnAMissingOne) {
                               " " + files[0] + " " + (dir / "nothing.vtu") + " 2>/dev/null";
   EXPECT_NE(std::system(missing.c_str()), 0);
   EXPECT_TRUE(fs::exists(dir.path() / "missing/plane/plane_000000.png"));
+}
+
+// Step 1 is not a VTK file: it fails, writes no image (before, it rendered a blank one from an
+// empty grid), and the steps around it render.
+TEST(Replay, AStepThatCannotBeReadWritesNoImage) {
+  ScratchDir dir;
+  write_series(dir);
+  std::ofstream(dir / "step1.vtu") << "not a VTK file";
+  const std::string command = std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "out") + " " +
+                              (dir / "series.pvd") + " 2>" + (dir / "stderr.txt");
+  EXPECT_NE(std::system(command.c_str()), 0) << command;
+  EXPECT_NE(read_text(dir / "stderr.txt").find("step1.vtu"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir.path() / "out/plane/plane_000000.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "out/plane/plane_000001.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "out/plane/plane_000002.png"));
+  const auto log = read_csv(dir / "out/tetray_log.csv");
+  ASSERT_EQ(log.size(), 3u);
+  EXPECT_EQ(cell(log, 1, "step"), "0");
+  EXPECT_EQ(cell(log, 2, "step"), "2");
+}
+
+// A second scene draws field h, which step 1 lacks: that scene is skipped there, with a
+// message; the plane renders every step, and the replay succeeds.
+TEST(Replay, ASceneWhoseFieldAStepLacksIsSkippedForThatStep) {
+  ScratchDir dir;
+  write_series(dir, [](const PlaneScene& scene, int k) {
+    vtkio::TetGrid grid = moving_plane(scene, k);
+    if (k != 1) grid.point_fields["h"] = scene.f;
+    return grid;
+  });
+  const std::string h_scene =
+      "  - {name: by_h, field: h, isovalues: [0.25], image: {width: 16, height: 16}}\n";
+  const std::string command = std::string(TETRAY_REPLAY) + " -c " +
+                              write_config(dir, "out", h_scene) + " " + (dir / "series.pvd") +
+                              " 2>" + (dir / "stderr.txt");
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_NE(read_text(dir / "stderr.txt")
+                .find("step 1: scene 'by_h' skipped: field 'h' used by scene 'by_h' was not "
+                      "passed to execute (passed: f)"),
+            std::string::npos)
+      << read_text(dir / "stderr.txt");
+  for (int step = 0; step < 3; ++step) {
+    const std::string digits = "00000" + std::to_string(step);
+    EXPECT_TRUE(fs::exists(dir.path() / ("out/plane/plane_" + digits + ".png"))) << step;
+    EXPECT_EQ(fs::exists(dir.path() / ("out/by_h/by_h_" + digits + ".png")), step != 1) << step;
+  }
+  const auto log = read_csv(dir / "out/tetray_log.csv");
+  std::vector<std::string> rows;  // step and scene of each rendered image
+  for (std::size_t row = 1; row < log.size(); ++row) {
+    rows.push_back(cell(log, row, "step") + " " + cell(log, row, "scene"));
+  }
+  const std::vector<std::string> expected = {"0 plane", "0 by_h", "1 plane", "2 plane", "2 by_h"};
+  EXPECT_EQ(rows, expected);
 }
 
 }  // namespace

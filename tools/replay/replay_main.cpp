@@ -1,6 +1,8 @@
 // tetray-replay: renders a saved series (a ParaView .pvd, or a list of .vtu/.pvtu files)
 // through the same adaptor and config as a live run, so a config can be tuned offline. Rank 0
-// reads every step; other ranks take part with no tets. Exits non-zero if any step failed.
+// reads every step; other ranks take part with no tets. A step that cannot be read renders
+// nothing; a scene whose field a step lacks is skipped for that step. Exits non-zero if any step
+// failed.
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 
@@ -36,35 +38,48 @@ bool list_series(const std::vector<std::string>& inputs, std::vector<SeriesEntry
   return true;
 }
 
-// Replays every step; a failed step is reported and the replay goes on.
+// Rank 0 reads the step into `grid`; every rank learns whether it could, so that a step that
+// cannot be read is left out on every rank and writes no image.
+bool read_step(const SeriesEntry& entry, int rank, tetray::vtkio::TetGrid& grid) {
+  int read = 1;
+  std::string error;
+  if (rank == 0 && !tetray::vtkio::read_grid(entry.path, grid, error)) {
+    std::fprintf(stderr, "tetray-replay: %s\n", error.c_str());
+    read = 0;
+  }
+  MPI_Bcast(&read, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return read == 1;
+}
+
+// Replays every step; a failed step is reported and the replay goes on. The adaptor's status is
+// the same on every rank, so rank 0 alone prints it.
 int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series, int rank) {
   int failed = 0;
+  bool first = true;
   tetray::vtkio::TetGrid previous;
   for (std::size_t step = 0; step < series.size(); ++step) {
     tetray::vtkio::TetGrid grid;
-    std::string error;
-    if (rank == 0 && !tetray::vtkio::read_grid(series[step].path, grid, error)) {
-      std::fprintf(stderr, "tetray-replay: %s\n", error.c_str());
-      grid = {};
+    if (!read_step(series[step], rank, grid)) {
       ++failed;
+      continue;
     }
     // Saved steps say nothing of what changed: compare with the previous step, so an unmoved
     // mesh gets a scalar-only refit and an unchanged topology no rebuild.
     const tetray::Changes changes{
-        step == 0 || grid.points != previous.points,
-        step == 0 || grid.tets != previous.tets || grid.ghost != previous.ghost, true};
+        first || grid.points != previous.points,
+        first || grid.tets != previous.tets || grid.ghost != previous.ghost, true};
     const tetray::Status status = tetray::execute(adaptor, static_cast<std::int64_t>(step),
                                                   series[step].time, grid, changes, nullptr);
-    if (!status.ok()) {
-      if (rank == 0)
-        std::fprintf(stderr, "tetray-replay: step %zu: %s\n", step, status.message.c_str());
-      ++failed;
+    if (!status.ok() && rank == 0) {
+      std::fprintf(stderr, "tetray-replay: step %zu: %s\n", step, status.message.c_str());
     }
+    failed += status.failed() ? 1 : 0;
+    first = false;
     previous = std::move(grid);
   }
   const tetray::Status finalized = adaptor.finalize();
   if (!finalized.ok()) {
-    std::fprintf(stderr, "tetray-replay: %s\n", finalized.message.c_str());
+    if (rank == 0) std::fprintf(stderr, "tetray-replay: %s\n", finalized.message.c_str());
     ++failed;
   }
   return failed;

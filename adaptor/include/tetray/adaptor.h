@@ -2,7 +2,9 @@
  * Fortran (module tetray, adaptor/fortran/tetray.f90). A handle keeps non-owning views of the
  * solver's arrays, set with tetray_set_mesh and tetray_set_field; they must stay valid until
  * the tetray_execute call that reads them. Every call returns a tetray_status; the message of
- * the last failed call on this thread is tetray_last_error(). Nothing aborts or throws. */
+ * the last call on this thread that did not return TETRAY_OK is tetray_last_error(). Nothing
+ * aborts or throws. Collective calls return the same status on every rank of the adaptor's
+ * communicator; a message caused by one rank starts with "rank N: ". */
 #ifndef TETRAY_ADAPTOR_H
 #define TETRAY_ADAPTOR_H
 
@@ -24,7 +26,10 @@ typedef enum {
   TETRAY_IO_ERROR = 3,
   TETRAY_MPI_ERROR = 4,
   TETRAY_INTERNAL_ERROR = 5,
-  TETRAY_NOT_INITIALIZED = 6
+  TETRAY_NOT_INITIALIZED = 6,
+  /* The call completed but skipped some scenes (a field missing or unusable on some rank): the
+   * message names each scene and why; tetray_get_skipped_scene lists them. */
+  TETRAY_PARTIAL = 7
 } tetray_status;
 
 enum { TETRAY_FLOAT32 = 0, TETRAY_FLOAT64 = 1 }; /* scalar types */
@@ -37,12 +42,15 @@ enum {
   TETRAY_CHANGED_ALL = 7
 };
 
-/* What the last tetray_execute did. */
+/* What the last tetray_execute did. bvh_decision ("none", "field_refit", "refit", "rebuild")
+ * stays valid until the next tetray_execute on the handle. */
 typedef struct {
   int rendered;
   int scenes_rendered;
   double seconds_blocked;
   uint64_t tets_skipped;
+  int scenes_skipped; /* due but skipped: the call returned TETRAY_PARTIAL */
+  const char* bvh_decision;
 } tetray_report;
 
 /* Collective. On success *out is a new handle; on failure *out is NULL. */
@@ -63,15 +71,24 @@ int tetray_set_field(tetray_adaptor* a, const char* name, const void* values, in
                      int64_t count);
 int tetray_clear_fields(tetray_adaptor* a);
 
-/* Collective. `changes`: TETRAY_CHANGED_* bits. */
+/* Sets *will_render to 1 when tetray_execute(step, time) would render at least one scene, else
+ * 0. No MPI, no side effects: lets a solver skip preparing its fields on off-trigger steps. */
+int tetray_will_render(const tetray_adaptor* a, int64_t step, double time, int* will_render);
+
+/* Collective. `changes`: TETRAY_CHANGED_* bits. Off-trigger steps return TETRAY_OK at once,
+ * without MPI; a writer error is returned by the next rendering step or tetray_finalize. */
 int tetray_execute(tetray_adaptor* a, int64_t step, double time, int changes);
 int tetray_get_report(const tetray_adaptor* a, tetray_report* report);
+/* The name of skipped scene `index` (0 <= index < report.scenes_skipped) of the last
+ * tetray_execute, valid until the next one. */
+int tetray_get_skipped_scene(const tetray_adaptor* a, int index, const char** name);
 
-/* Collective; drains the image writer. tetray_destroy finalizes if needed, then frees. */
+/* Collective; drains the image writer and returns its error on every rank. tetray_destroy
+ * finalizes if needed, then frees. */
 int tetray_finalize(tetray_adaptor* a);
 void tetray_destroy(tetray_adaptor* a);
 
-/* The message of the last failed call on this thread ("" when none). */
+/* The message of the last call on this thread, "" when it returned TETRAY_OK. */
 const char* tetray_last_error(void);
 
 #ifdef __cplusplus

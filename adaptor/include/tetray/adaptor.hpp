@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tetray {
 
@@ -23,13 +24,20 @@ enum class StatusCode {
   mpi_error,
   internal_error,
   not_initialized,
+  // The call completed, but some scenes were skipped (a field missing or unusable on some rank);
+  // the message names each skipped scene and why. The other scenes rendered.
+  partial,
 };
 
+// Every collective call (create, execute, finalize) returns the same code on every rank of the
+// adaptor's communicator; a message caused by one rank starts with "rank N: ".
 struct Status {
   StatusCode code = StatusCode::ok;
   std::string message;
 
   bool ok() const { return code == StatusCode::ok; }
+  // Neither ok nor partial: the call did nothing a solver can rely on (no scene rendered).
+  bool failed() const { return code != StatusCode::ok && code != StatusCode::partial; }
   static Status success() { return {}; }
 };
 
@@ -104,9 +112,10 @@ struct Changes {
 struct ExecuteReport {
   bool rendered = false;  // false on an off-trigger step
   int scenes_rendered = 0;
-  double seconds_blocked = 0;      // time execute held the solver
-  std::string bvh_decision;        // "none", "field_refit", "refit", "rebuild"
-  std::uint64_t tets_skipped = 0;  // under the skip_tets NaN/Inf policy
+  double seconds_blocked = 0;               // time execute held the solver
+  std::string bvh_decision;                 // "none", "field_refit", "refit", "rebuild"
+  std::uint64_t tets_skipped = 0;           // under the skip_tets NaN/Inf policy
+  std::vector<std::string> skipped_scenes;  // due but not rendered (status partial), by name
 };
 
 class Adaptor {
@@ -121,17 +130,26 @@ class Adaptor {
   Adaptor(const Adaptor&) = delete;
   Adaptor& operator=(const Adaptor&) = delete;
 
-  // One solver step. Collective over the adaptor's communicator. Off-trigger steps return at
-  // once. An error in a writer thread from an earlier step is returned here.
+  // One solver step. Collective over the adaptor's communicator. Off-trigger steps return ok at
+  // once, without MPI. An error the writer thread met since the last render step is returned by
+  // the next render step (which then renders nothing) or by finalize, on every rank.
   Status execute(std::int64_t step, double time, const MeshView& mesh,
                  std::span<const FieldView> fields, const Changes& changes = {},
                  ExecuteReport* report = nullptr);
+
+  // For a rank that could not prepare its views for this step (converting them failed, say):
+  // called instead of execute, collectively like it, so that no other rank is left waiting in
+  // the step. On a render step every rank returns `error`, prefixed with this rank's number; on
+  // an off-trigger step ok, and `error` is returned by the next render step or finalize.
+  Status execute_failed(std::int64_t step, double time, Status error, const Changes& changes = {},
+                        ExecuteReport* report = nullptr);
 
   // Whether execute(step, time, ...) would render at least one scene. No side effects, no MPI:
   // lets a solver (or the VTK bridge) skip preparing views on off-trigger steps.
   bool will_render(std::int64_t step, double time) const;
 
-  // Drains the writer queue, closes the logs. Collective. Idempotent.
+  // Drains the writer queue, closes the logs and returns the writer's error, if any, on every
+  // rank. Collective. Idempotent.
   Status finalize();
 
  private:
