@@ -1,9 +1,9 @@
-# The ctest command of one tetray-minisolver run (tests/solver/CMakeLists.txt passes the -D
+# The ctest command of one tetray-minisolver run (tests/mini-solver/CMakeLists.txt passes the -D
 # values): runs it under mpirun (each rank through WRAPPER, a command prefix, when given), checks
-# its exit code and output, and, for a run that should
-# succeed, every file docs/architecture.md §3 says it owes, for each scene of the config and each step the
-# trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
-# else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv.
+# its exit code and output, and, for a run that should succeed, every file docs/architecture.md
+# §3 says it owes, for each scene of the config and each step the trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
+# else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv,
+# and the pixels of the first skin image (SKIN_CHECK).
 # A refused run must write no image. Every failed check is listed, then the test fails.
 cmake_minimum_required(VERSION 3.25)
 set(failures "")
@@ -131,6 +131,15 @@ foreach(regex IN LISTS OUTPUT)
 endforeach()
 if(EXIT_CODE EQUAL 0)
   check_outputs()
+  # SKIN_CHECK: the command that checks the first skin image against the beam's geometry.
+  if(DEFINED SKIN_CHECK)
+    execute_process(COMMAND ${SKIN_CHECK} RESULT_VARIABLE skin_code OUTPUT_VARIABLE skin_output
+      ERROR_VARIABLE skin_output)
+    message("${skin_output}")
+    if(NOT skin_code EQUAL 0)
+      fail("the first skin image does not match the undeformed beam: ${skin_output}")
+    endif()
+  endif()
 else()
   file(GLOB_RECURSE images ${OUT_DIR}/*.png ${OUT_DIR}/*.exr)
   if(images)

@@ -66,9 +66,9 @@ ReferenceIntersector::ReferenceIntersector(const render::TetVolume& volume,
       tets_(reference_tets(volume)),
       isovalues_(std::move(isovalues)) {}
 
-ReferenceHit ReferenceIntersector::trace_ray(const render::CameraFrame& frame,
+ReferenceHit ReferenceIntersector::trace_ray(const ReferenceCamera& camera,
                                              Vec3d direction) const {
-  const Ray ray{frame.eye - origin_, direction};
+  const Ray ray{camera.eye() - origin_, direction};
   ReferenceHit result;
   result.length_scale = std::max(length(ray.origin), extent_);
   const double pad = 2 * kGrazingDistance * result.length_scale;
@@ -87,7 +87,7 @@ ReferenceHit ReferenceIntersector::trace_ray(const render::CameraFrame& frame,
     }
   }
   const auto depth_at = [&](double t) {
-    return t == ReferenceHit::kNone ? t : render::view_depth(frame, frame.eye + t * direction);
+    return t == ReferenceHit::kNone ? t : camera.depth(camera.eye() + t * direction);
   };
   result.hit = nearest.tet != nullptr;
   if (result.hit) {
@@ -116,13 +116,13 @@ ReferenceHit ReferenceIntersector::trace_ray(const render::CameraFrame& frame,
 }
 
 std::vector<ReferenceHit> ReferenceIntersector::trace_image(const render::Camera& camera) const {
-  const render::CameraFrame frame = render::make_frame(camera);
+  const ReferenceCamera rays(camera);
   std::vector<ReferenceHit> hits(static_cast<std::size_t>(camera.width) * camera.height);
   tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const auto& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       for (int i = 0; i < camera.width; ++i) {
         hits[static_cast<std::size_t>(j) * camera.width + i] =
-            trace_ray(frame, render::pixel_direction(frame, camera, i, j));
+            trace_ray(rays, rays.pixel_direction(i, j));
       }
     }
   });

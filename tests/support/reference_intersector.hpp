@@ -1,15 +1,15 @@
 // The brute-force double-precision reference for tetray's images: every pixel ray is tested
 // against every tet of the volume (the renderer's own float data, read in double), nearest hit
-// over all tets and isovalues. It shares only the camera (which defines the rays) and the tet
-// data with the renderer. Slow by design: for meshes of a few thousand tets.
+// over all tets and isovalues. It shares only the tet data with the renderer: its rays come from
+// its own camera (reference_camera.hpp). Slow by design: for meshes of a few thousand tets.
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <vector>
 
-#include "render/trace/camera.hpp"
 #include "render/volume/tet_volume.hpp"
+#include "support/reference_camera.hpp"
 #include "support/reference_tet.hpp"
 
 namespace tetray::test {
@@ -44,7 +44,7 @@ class ReferenceIntersector {
  public:
   ReferenceIntersector(const render::TetVolume& volume, std::vector<double> isovalues);
 
-  ReferenceHit trace_ray(const render::CameraFrame& frame, Vec3d direction) const;
+  ReferenceHit trace_ray(const ReferenceCamera& camera, Vec3d direction) const;
   // One ReferenceHit per pixel, row-major from the top-left (Framebuffer::index), computed in
   // parallel over rows.
   std::vector<ReferenceHit> trace_image(const render::Camera& camera) const;

@@ -1,6 +1,6 @@
-// The compositor against the brute-force reference (gather everything, nearest per pixel by
-// wins_over), for every algorithm, at whatever rank count mpirun gives (ctest runs 1, 2, 3, 4,
-// 5 and 8).
+// The compositor against the brute-force reference (gather everything, nearest per pixel, ties
+// to the smaller key, spelled apart from the library's wins_over), for every algorithm, at
+// whatever rank count mpirun gives (ctest runs 1, 2, 3, 4, 5 and 8).
 #include <gtest/gtest.h>
 
 #include <numeric>

@@ -1,6 +1,7 @@
 #include "composite_test_images.hpp"
 
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace tetray::render::testing {
@@ -55,14 +56,24 @@ Framebuffer brute_force_composite(const Framebuffer& image, MPI_Comm comm, int r
   MPI_Gather(image.hit.data(), n, MPI_UINT32_T, hit.data(), n, MPI_UINT32_T, root, comm);
   Framebuffer result(image.width, image.height);
   if (!on_root) return result;
-  for (int r = 0; r < rank_count; ++r) {
-    for (std::size_t p = 0; p < pixels; ++p) {
+  // The rule of docs/architecture.md §3 spelled as the lexicographic order of (depth, key), not
+  // through the library's wins_over, so a changed rule in the library shows here. The background
+  // (+inf, kNoHit) is the start, and loses to every pixel that carries a key.
+  for (std::size_t p = 0; p < pixels; ++p) {
+    std::pair<float, std::uint32_t> nearest{result.depth[p], result.hit[p]};
+    int nearest_rank = -1;
+    for (int r = 0; r < rank_count; ++r) {
       const std::size_t q = r * pixels + p;
-      if (!wins_over(depth[q], hit[q], result.depth[p], result.hit[p])) continue;
-      result.depth[p] = depth[q];
-      result.hit[p] = hit[q];
-      for (int c = 0; c < 4; ++c) result.rgba[4 * p + c] = rgba[4 * q + c];
+      if (std::pair{depth[q], hit[q]} < nearest) {
+        nearest = {depth[q], hit[q]};
+        nearest_rank = r;
+      }
     }
+    if (nearest_rank < 0) continue;
+    const std::size_t q = nearest_rank * pixels + p;
+    result.depth[p] = depth[q];
+    result.hit[p] = hit[q];
+    for (int c = 0; c < 4; ++c) result.rgba[4 * p + c] = rgba[4 * q + c];
   }
   return result;
 }

@@ -20,8 +20,9 @@ Framebuffer random_image(int width, int height, std::uint32_t seed, int rank, in
 // Coverage drawn from the seed and rank: empty, full or a random rectangle.
 Coverage random_coverage(std::uint32_t seed, int rank);
 
-// Gathers every rank's image on `root` and keeps the nearest per pixel by wins_over: the
-// definition of the composited image, independent of the compositor's code. Collective;
+// Gathers every rank's image on `root` and keeps the nearest per pixel, equal depths going to
+// the smaller key: the definition of the composited image, independent of the compositor's code
+// and of its wins_over. Collective;
 // meaningful on the root only.
 Framebuffer brute_force_composite(const Framebuffer& image, MPI_Comm comm, int root);
 

@@ -10,6 +10,7 @@
 
 #include "render/trace/colormap.hpp"
 #include "render/update/volume_update.hpp"
+#include "support/reference_camera.hpp"
 #include "support/render_fixtures.hpp"
 
 namespace tetray::test {
@@ -47,14 +48,14 @@ TEST(ColorBy, ColorIsTheColormapOfTheFieldAtTheHit) {
   const render::IsoSurface surfaces[] = {{0.0f, {1, 0, 0}}};
   const render::Framebuffer image =
       render::trace(scene.volume, scene.bvh, camera, surfaces, options);
-  const render::CameraFrame frame = render::make_frame(camera);
+  const ReferenceCamera rays(camera);
   std::size_t checked = 0;
   for (int j = 0; j < camera.height; ++j)
     for (int i = 0; i < camera.width; ++i) {
       const std::size_t p = image.index(i, j);
       if (image.hit[p] == render::kNoHit) continue;
-      const Vec3d d = render::pixel_direction(frame, camera, i, j);
-      const double t = image.depth[p] / render::dot(d, frame.forward);
+      const Vec3d d = rays.pixel_direction(i, j);
+      const double t = image.depth[p] / rays.depth(camera.eye + d);
       const Vec3d hit = camera.eye + t * d;
       float rgb[3];
       map->lookup(static_cast<float>((hit.x + 1) / 2), rgb);

@@ -67,11 +67,11 @@ TEST(ReferenceSelfTest, LinearFieldGivesItsExactPlane) {
     const ReferenceIntersector reference(linear_volume(c), {c.isovalue});
     int checked_hits = 0, checked_misses = 0;
     for (const render::Camera& camera : standard_cameras(40, 30)) {
-      const render::CameraFrame frame = make_frame(camera);
+      const ReferenceCamera rays(camera);
       for (int j = 0; j < camera.height; ++j) {
         for (int i = 0; i < camera.width; ++i) {
-          const Vec3d d = pixel_direction(frame, camera, i, j);
-          const ReferenceHit got = reference.trace_ray(frame, d);
+          const Vec3d d = rays.pixel_direction(i, j);
+          const ReferenceHit got = reference.trace_ray(rays, d);
           const double margin = 1e-6 * got.length_scale;
           const double t = (c.isovalue - c.field(camera.eye)) / dot(c.field.gradient, d);
           const Vec3d x = camera.eye + t * d;
@@ -98,10 +98,10 @@ TEST(ReferenceSelfTest, BelowLevelProbeMatchesTheClippedLinearField) {
   const BelowLevelProbe probe(linear_volume(c), c.isovalue);
   int below = 0, not_below = 0;
   for (const render::Camera& camera : standard_cameras(40, 30)) {
-    const render::CameraFrame frame = make_frame(camera);
+    const ReferenceCamera rays(camera);
     for (int j = 0; j < camera.height; ++j) {
       for (int i = 0; i < camera.width; ++i) {
-        const Vec3d d = pixel_direction(frame, camera, i, j);
+        const Vec3d d = rays.pixel_direction(i, j);
         const Interval inside = clip_to_cube(camera.eye, d);
         const bool passes = probe.passes_below(camera.eye, d);
         if (inside.empty()) {
@@ -135,7 +135,7 @@ TEST(ReferenceSelfTest, GrazingDistancesToKnownEdges) {
   const Probe probes[] = {{0.1 * h, 0.5 * h, 0.1 * h}, {0.0, 0.5 * h, 0.0}};
   for (const Probe& probe : probes) {
     render::Camera camera = look_at({-3, probe.y, probe.z}, {0, probe.y, probe.z}, 30, 1, 1);
-    const ReferenceHit got = reference.trace_ray(make_frame(camera), {1, 0, 0});
+    const ReferenceHit got = reference.trace_ray(ReferenceCamera(camera), {1, 0, 0});
     ASSERT_TRUE(got.hit);
     EXPECT_NEAR(got.depth, 3.0, 1e-12);
     EXPECT_DOUBLE_EQ(got.length_scale, length_scale);

@@ -33,13 +33,13 @@ struct MissCounts {
 
 std::vector<std::uint8_t> rays_through_region(const BelowLevelProbe& probe,
                                               const render::Camera& camera) {
-  const render::CameraFrame frame = render::make_frame(camera);
+  const ReferenceCamera rays(camera);
   std::vector<std::uint8_t> through(static_cast<std::size_t>(camera.width) * camera.height);
   tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const auto& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       for (int i = 0; i < camera.width; ++i) {
-        const Vec3d d = render::pixel_direction(frame, camera, i, j);
-        through[static_cast<std::size_t>(j) * camera.width + i] = probe.passes_below(frame.eye, d);
+        through[static_cast<std::size_t>(j) * camera.width + i] =
+            probe.passes_below(camera.eye, rays.pixel_direction(i, j));
       }
     }
   });
@@ -65,9 +65,9 @@ void count_misses(const RenderScene& scene, const BelowLevelProbe& probe,
       if (reported++ >= 3) continue;
       const ReferenceIntersector reference(scene.volume, isovalues_of(surfaces));
       const int i = static_cast<int>(p) % camera.width, j = static_cast<int>(p) / camera.width;
-      const render::CameraFrame frame = render::make_frame(camera);
+      const ReferenceCamera reference_camera(camera);
       const ReferenceHit ref =
-          reference.trace_ray(frame, render::pixel_direction(frame, camera, i, j));
+          reference.trace_ray(reference_camera, reference_camera.pixel_direction(i, j));
       ADD_FAILURE() << label << " packet " << render::to_string(kPackets[k])
                     << ": pinhole at pixel (" << i << ", " << j << "); reference depth "
                     << ref.depth << " tet " << ref.tet_id << ", isopolygon edge distance "

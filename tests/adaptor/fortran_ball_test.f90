@@ -1,0 +1,88 @@
+! The Fortran API end to end against an analytic answer: the ball of c_api_ball_test.c (radius
+! 0.6 at distance 3, tests/support/ball_image.h), rendered through module tetray, must cover as
+! many pixels of the PNG as the camera geometry and the mesh's interpolation error allow. The mesh,
+! the bounds and the PNG count come from the C helper, so both languages check the same answer.
+! Stops with code 1 on a failed check.
+program fortran_ball_test
+  use, intrinsic :: iso_c_binding
+  use mpi
+  use tetray
+  implicit none
+
+  interface
+    integer(c_int64_t) function ball_point_count(cells) bind(c, name="tetray_ball_point_count")
+      import :: c_int, c_int64_t
+      integer(c_int), value :: cells
+    end function
+    integer(c_int64_t) function ball_tet_count(cells) bind(c, name="tetray_ball_tet_count")
+      import :: c_int, c_int64_t
+      integer(c_int), value :: cells
+    end function
+    subroutine ball_mesh(cells, xyz, tets, distance) bind(c, name="tetray_ball_mesh")
+      import :: c_int, c_double, c_int64_t
+      integer(c_int), value :: cells
+      real(c_double) :: xyz(*), distance(*)
+      integer(c_int64_t) :: tets(*)
+    end subroutine
+    subroutine ball_pixel_bounds(cells, radius, eye_distance, fov_deg, width, height, fewest, &
+        most) bind(c, name="tetray_ball_pixel_bounds")
+      import :: c_int, c_double, c_int64_t
+      integer(c_int), value :: cells, width, height
+      real(c_double), value :: radius, eye_distance, fov_deg
+      integer(c_int64_t) :: fewest, most
+    end subroutine
+    integer(c_int64_t) function png_covered_pixels(path) bind(c, name="tetray_png_covered_pixels")
+      import :: c_char, c_int64_t
+      character(kind=c_char) :: path(*)
+    end function
+  end interface
+
+  integer(c_int), parameter :: cells = 16, side = 64
+  character(len=*), parameter :: dir = "fortran_ball_test_out"
+  real(c_double), allocatable, target :: xyz(:), distance(:)
+  integer(c_int64_t), allocatable, target :: tets(:)
+  integer(c_int64_t) :: points, tet_count, covered, fewest, most
+  type(c_ptr) :: handle
+  integer :: ierr, failures
+
+  failures = 0
+  call mpi_init(ierr)
+  call check(tetray_create_from_yaml(MPI_COMM_WORLD, &
+      "output: {directory: " // dir // ", formats: [png], quiet: true, writer_queue_depth: 0}" // &
+      new_line("a") // "scenes: [{name: ball, field: distance, isovalues: [0.6], " // &
+      "camera: {eye: [0, 0, 3], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}, " // &
+      "image: {width: 64, height: 64}}]", handle) == TETRAY_OK, "create")
+  points = ball_point_count(cells)
+  tet_count = ball_tet_count(cells)
+  allocate(xyz(3 * points), distance(points), tets(4 * tet_count))
+  call ball_mesh(cells, xyz, tets, distance)
+  call check(tetray_set_mesh(handle, c_loc(xyz), TETRAY_FLOAT64, points, c_null_ptr, &
+      TETRAY_FLOAT64, c_loc(tets), TETRAY_INT64, tet_count, c_null_ptr, c_null_ptr) == TETRAY_OK, &
+      "set_mesh")
+  call check(tetray_set_field(handle, "distance", c_loc(distance), TETRAY_FLOAT64, points) == &
+      TETRAY_OK, "set_field")
+  call check(tetray_execute(handle, 0_c_int64_t, 0d0, TETRAY_CHANGED_ALL) == TETRAY_OK, "execute")
+  call check(tetray_finalize(handle) == TETRAY_OK, "finalize")
+  call tetray_destroy(handle)
+
+  covered = png_covered_pixels(dir // "/ball/ball_000000.png" // c_null_char)
+  call ball_pixel_bounds(cells, 0.6d0, 3d0, 40d0, side, side, fewest, most)
+  print *, "fortran_ball_test: pixels covered", covered, "expected", fewest, "to", most
+  call check(covered >= fewest .and. covered <= most, &
+      "the ball covers the pixels its geometry predicts")
+  call execute_command_line("rm -rf " // dir)
+  call mpi_finalize(ierr)
+  if (failures > 0) stop 1
+
+contains
+
+  subroutine check(ok, what)
+    logical, intent(in) :: ok
+    character(len=*), intent(in) :: what
+    if (.not. ok) then
+      print *, "FAILED: ", what, " (", tetray_error_message(), ")"
+      failures = failures + 1
+    end if
+  end subroutine
+
+end program
