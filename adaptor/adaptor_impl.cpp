@@ -13,6 +13,7 @@
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "tie_keys.hpp"
 
 namespace tetray {
 namespace {
@@ -186,7 +187,7 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
   if (std::string e = check_mesh_shape(mesh); !e.empty()) return invalid(e);
   if (Status st = check_scene_fields(mesh, fields); !st.ok()) return st;
   const render::Stopwatch ingest;
-  if (std::string e = convert_topology(mesh.tets); !e.empty()) return invalid(e);
+  if (std::string e = convert_topology(mesh); !e.empty()) return invalid(e);
   if (SceneState* first = first_due_scene()) first->record.ingest_ms += ingest.ms();
   bool loading = false;
   for (std::size_t v = 0; v < volumes_.size(); ++v) {
@@ -252,7 +253,8 @@ Status Adaptor::Impl::skipped_status() const {
   return {StatusCode::partial, std::move(message)};
 }
 
-std::string Adaptor::Impl::convert_topology(const TetsView& tets) {
+std::string Adaptor::Impl::convert_topology(const MeshView& mesh) {
+  const TetsView& tets = mesh.tets;
   const bool fresh = converted_topology_ == epochs_.topology;
   if (tets.type == IndexType::int64 || !fresh) {
     tets_ = connectivity_int64(tets, tets_converted_);
@@ -260,7 +262,7 @@ std::string Adaptor::Impl::convert_topology(const TetsView& tets) {
     tets_ = tets_converted_;
   }
   if (fresh) return {};
-  std::string error = tie_keys(tets, tie_keys_);
+  std::string error = tie_keys(tets, tets_, mesh.points, tie_keys_);
   if (error.empty()) converted_topology_ = epochs_.topology;
   return error;
 }

@@ -63,7 +63,7 @@ class Adaptor::Impl {
   void begin_step(std::int64_t step, double time, const MeshView& mesh);
   Status validate(const MeshView& mesh, std::span<const FieldView> fields);
   Status check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields);
-  std::string convert_topology(const TetsView& tets);
+  std::string convert_topology(const MeshView& mesh);
   bool needs_check(std::size_t v);
   Status check_volume(std::size_t v, const MeshView& mesh, std::span<const FieldView> fields);
   void skip(std::size_t scene, std::string reason);

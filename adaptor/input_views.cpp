@@ -96,21 +96,6 @@ std::span<const std::int64_t> connectivity_int64(const TetsView& tets,
   return scratch;
 }
 
-std::string tie_keys(const TetsView& tets, std::vector<std::uint32_t>& keys) {
-  keys.clear();
-  if (tets.global_ids == nullptr) return {};
-  keys.resize(tets.count);
-  for (std::size_t t = 0; t < tets.count; ++t) {
-    const std::int64_t id = tets.global_ids[t];
-    if (id < 0 || id >= static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max())) {
-      return "mesh.tets.global_ids[" + std::to_string(t) + "] = " + std::to_string(id) +
-             " is outside [0, 2^32-1)";
-    }
-    keys[t] = static_cast<std::uint32_t>(id);
-  }
-  return {};
-}
-
 void add_point_bounds(const PointsView& points, render::BoundingBox& box) {
   const std::size_t n = 3 * points.count;
   box.merge(points.type == ScalarType::float32

@@ -39,10 +39,6 @@ render::FieldSource field_source(const FieldView& field);
 std::span<const std::int64_t> connectivity_int64(const TetsView& tets,
                                                  std::vector<std::int64_t>& scratch);
 
-// Global ids as the renderer's 32-bit tie keys (empty when the solver gives none). Returns an
-// error when an id does not fit.
-std::string tie_keys(const TetsView& tets, std::vector<std::uint32_t>& keys);
-
 // Widens `box` by the bounding box of the (reference) point coordinates.
 void add_point_bounds(const PointsView& points, render::BoundingBox& box);
 

@@ -2,20 +2,14 @@
 
 #include <cmath>
 
+#include "render/core/hash.hpp"
+
 namespace tetray {
 namespace {
 
-// splitmix64: a fixed, platform-independent hash for the deterministic jitter.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 // Uniform in [-1, 1] from the point index and the axis.
 double unit_jitter(std::uint64_t point, int axis) {
-  const std::uint64_t h = mix(point * 3 + static_cast<std::uint64_t>(axis));
+  const std::uint64_t h = render::mix64(point * 3 + static_cast<std::uint64_t>(axis));
   return static_cast<double>(h >> 11) * (2.0 / 9007199254740992.0) - 1.0;
 }
 

@@ -69,8 +69,10 @@ struct TetsView {
   // Optional per-tet VTK vtkGhostType flags: tets with DUPLICATECELL (1) or HIDDENCELL (32)
   // are not rendered.
   const std::uint8_t* ghost = nullptr;
-  // Optional global tet ids (unique across ranks); they make depth ties resolve identically for
-  // any rank count. Without them, rank-local ids are used.
+  // Optional global tet ids (unique across ranks, below 2^32-1): the fastest way to make exact
+  // depth ties resolve alike for any rank count. Without them tetray derives each tet's key from
+  // its corners' coordinates (the reference coordinates at the last topology change), which
+  // every partition computes alike too.
   const std::int64_t* global_ids = nullptr;
 
   static TetsView of(std::span<const std::int64_t> c) {
