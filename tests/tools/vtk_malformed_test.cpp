@@ -31,7 +31,13 @@ bool contains(const std::string& text, const std::string& part) {
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-// A one-piece ASCII .vtu with the unit tet's points (or `points_xml`) and the given cells.
+// Point field f = 0, 1, 2, 3 of a 4-point piece.
+const std::string kFieldF =
+    "<PointData><DataArray type=\"Float64\" Name=\"f\" format=\"ascii\">0 1 2 3</DataArray>"
+    "</PointData>\n";
+
+// A one-piece ASCII .vtu with the unit tet's points (or `points_xml`) and the given cells; with
+// 4 points also the field f.
 std::string vtu_text(const std::string& connectivity, const std::string& offsets,
                      const std::string& types, int cells, int points = 4,
                      const std::string& points_xml =
@@ -42,7 +48,7 @@ std::string vtu_text(const std::string& connectivity, const std::string& offsets
   <UnstructuredGrid>
     <Piece NumberOfPoints=")" +
          std::to_string(points) + "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n" +
-         points_xml + R"(
+         (points == 4 ? kFieldF : "") + points_xml + R"(
       <Cells>
         <DataArray type="Int64" Name="connectivity" format="ascii">)" +
          connectivity + R"(</DataArray>
@@ -165,6 +171,61 @@ TEST(VtkMalformed, DeeplyNestedFilesAreRefusedBeforeVtkReadsThem) {
   std::string error;
   EXPECT_FALSE(read_pvd(dir / "deep.pvd", series, error));
   EXPECT_TRUE(contains(error, "nest deeper than")) << error;
+}
+
+// A .pvtu summary whose array types or component counts differ from its pieces' (found by the
+// .pvtu fuzzer) made VTK's parallel reader write through a null pointer or past its buffers.
+// The pieces are read as they are and appended, whatever the summary says of their types.
+TEST(VtkMalformed, ASummaryThatMisdescribesItsPiecesReadsThePieces) {
+  ScratchDir dir;
+  write_text(dir / "piece.vtu", vtu_text("0 1 2 3", "4", "10", 1));
+  const std::pair<const char*, const char*> summaries[] = {
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>", "<PDataArray type=\"Float64\"/>"},
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>",
+       "<PDataArray type=\"Float64\" NumberOfComponents=\"2\"/>"},
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>",
+       "<PDataArray type=\"Float32\" NumberOfComponents=\"3\"/>"},
+      {"<PDataArray type=\"Int8\" Name=\"f\"/>",
+       "<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>"},
+  };
+  for (const auto& [point_data, points] : summaries) {
+    write_text(dir / "whole.pvtu", std::string(R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPointData>)") + point_data + "</PPointData>\n    <PPoints>" +
+                                       points +
+                                       R"(</PPoints>
+    <Piece Source="piece.vtu"/>
+    <Piece Source="piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+    TetGrid out;
+    std::string error;
+    ASSERT_TRUE(read_grid(dir / "whole.pvtu", out, error)) << point_data << points << error;
+    EXPECT_EQ(out.points, (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1,
+                                               0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}));
+    EXPECT_EQ(out.tets, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+    EXPECT_EQ(out.point_fields.at("f"), (std::vector<double>{0, 1, 2, 3, 0, 1, 2, 3}));
+  }
+}
+
+TEST(VtkMalformed, ASummaryNamingAnArrayAPieceLacksIsAnError) {
+  ScratchDir dir;
+  write_text(dir / "piece.vtu", vtu_text("0 1 2 3", "4", "10", 1));
+  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPointData><PDataArray type="Float64" Name="g"/></PPointData>
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source="piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+  const std::string error = read_error(dir / "whole.pvtu");
+  EXPECT_TRUE(contains(error, "piece.vtu': has no scalar point array 'g'")) << error;
+  write_text(dir / "empty.pvtu", "<VTKFile><PUnstructuredGrid/></VTKFile>");
+  EXPECT_TRUE(contains(read_error(dir / "empty.pvtu"), "lists no Piece"));
 }
 
 // The depth scan counts elements, not text that looks like them, and stops at raw data.
