@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace tetray {
@@ -31,7 +33,15 @@ TEST_P(CliExit, UsageErrorsExitWithOneAndHelpWithZero) {
 INSTANTIATE_TEST_SUITE_P(Tools, CliExit,
                          ::testing::Values(Tool{TETRAY_RENDER_EXE,
                                                 "grid.vtu --field f --iso 0 -o out.png --size 0x4"},
-                                           Tool{TETRAY_REPLAY_EXE, "-c"}));
+                                           Tool{TETRAY_REPLAY_EXE, "-c"},
+                                           Tool{TETRAY_COMPOSITE_BENCH_EXE, "--repeat many"},
+                                           Tool{TETRAY_ADAPTOR_BENCH_EXE, "-n many"}),
+                         [](const ::testing::TestParamInfo<Tool>& tool) {
+                           std::string name =
+                               std::filesystem::path(tool.param.executable).filename().string();
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace tetray
