@@ -1,7 +1,9 @@
 // The config is validated whole at create time; every error names the source, line and key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ostream>
 
 #include "config_parse.hpp"
 #include "trigger.hpp"
@@ -179,6 +181,13 @@ struct Edge {
 
 std::string edge_yaml(const Edge& e) {
   return std::string(e.top) + "scenes:\n  - name: s\n    field: f\n" + e.scene;
+}
+
+// Test names show the YAML on one line.
+void PrintTo(const Edge& e, std::ostream* out) {
+  std::string text = std::string(e.top) + e.scene;
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  *out << text;
 }
 
 class ConfigEdges : public ::testing::TestWithParam<Edge> {};
