@@ -15,6 +15,16 @@
 
 namespace tetray::config {
 
+// Limits of what a config may ask for, so that a mistake is a config error naming the limit and
+// the memory it would need, not an allocation failure in the solver's process. A scene keeps
+// its own image, about 60 bytes per pixel (config_parse.cpp): one image of the largest size
+// needs about 16 GB, and all images together at most that much again.
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::size_t kMaxScenes = 256;
+inline constexpr std::int64_t kMaxTotalPixels = std::int64_t{kMaxImageSide} * kMaxImageSide;
+// A config is a few kB; a much larger text is a mistake (and its YAML tree alone costs memory).
+inline constexpr std::size_t kMaxConfigBytes = 1 << 22;
+
 // Render every `every_steps` steps, or each time the simulated time reaches the next multiple
 // of `every_time` (exactly one of the two is set).
 struct Trigger {

@@ -1,6 +1,8 @@
 #include "config_parse.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -17,15 +19,26 @@ render::Vec3d vec3(const YamlReader& r, const YAML::Node& node, std::string_view
   return {v[0], v[1], v[2]};
 }
 
-render::Vec3d nonzero_vec3(const YamlReader& r, const YAML::Node& node, std::string_view key) {
-  const render::Vec3d v = vec3(r, node, key);
-  if (dot(v, v) == 0) r.fail(node, key, "must not be the zero vector");
-  return v;
+// A point of the scene (camera eye, look_at): within the renderer's coordinate range.
+render::Vec3d position(const YamlReader& r, const YAML::Node& node, std::string_view key) {
+  const auto v = r.numbers_in(node, key, 3, 3, -render::kMaxCoordinate, render::kMaxCoordinate);
+  return {v[0], v[1], v[2]};
 }
 
+// A direction (up, view_direction) as a unit vector: scaled by its largest component first,
+// so that [1e-300, 0, 0] and [1e300, 0, 0] neither underflow nor overflow.
+render::Vec3d direction(const YamlReader& r, const YAML::Node& node, std::string_view key) {
+  const render::Vec3d v = vec3(r, node, key);
+  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (largest == 0) r.fail(node, key, "must not be the zero vector");
+  return normalize((1 / largest) * v);
+}
+
+// Unit vectors within 1e-6 rad of each other (or of opposite directions): the camera frame
+// would be undefined or dominated by rounding.
 bool parallel(render::Vec3d a, render::Vec3d b) {
   const render::Vec3d c = cross(a, b);
-  return dot(c, c) <= 1e-20 * dot(a, a) * dot(b, b);
+  return dot(c, c) <= 1e-12;
 }
 
 Trigger parse_trigger(const YamlReader& r, const YAML::Node& node, std::string_view key) {
@@ -110,15 +123,14 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
       node["auto_fit"] ? r.boolean(node["auto_fit"], child_key(key, "auto_fit")) : !node["eye"];
   if (node["fov_deg"])
     cam.fov_deg = r.number_in(node["fov_deg"], child_key(key, "fov_deg"), 1, 179);
-  if (node["up"]) cam.up = nonzero_vec3(r, node["up"], child_key(key, "up"));
+  if (node["up"]) cam.up = direction(r, node["up"], child_key(key, "up"));
   if (cam.auto_fit) {
     for (const char* k : {"eye", "look_at"}) {
       if (node[k])
         r.fail(node[k], child_key(key, k), "not allowed with auto_fit (give view_direction)");
     }
     if (node["view_direction"]) {
-      cam.view_direction =
-          nonzero_vec3(r, node["view_direction"], child_key(key, "view_direction"));
+      cam.view_direction = direction(r, node["view_direction"], child_key(key, "view_direction"));
     }
     if (parallel(cam.view_direction, cam.up)) r.fail(node, key, "view_direction is parallel to up");
     return cam;
@@ -128,23 +140,57 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
   }
   if (!node["eye"] || !node["look_at"])
     r.fail(node, key, "an explicit camera needs eye and look_at");
-  cam.fixed.eye = vec3(r, node["eye"], child_key(key, "eye"));
-  cam.fixed.look_at = vec3(r, node["look_at"], child_key(key, "look_at"));
+  cam.fixed.eye = position(r, node["eye"], child_key(key, "eye"));
+  cam.fixed.look_at = position(r, node["look_at"], child_key(key, "look_at"));
   cam.fixed.up = cam.up;
   cam.fixed.fov_deg = cam.fov_deg;
   const render::Vec3d forward = cam.fixed.look_at - cam.fixed.eye;
   if (dot(forward, forward) == 0) r.fail(node, key, "eye and look_at are the same point");
-  if (parallel(forward, cam.up)) r.fail(node, key, "the view direction is parallel to up");
+  if (parallel(normalize(forward), cam.up)) {
+    r.fail(node, key, "the view direction is parallel to up");
+  }
   return cam;
+}
+
+// The memory a scene's image costs, per pixel: the framebuffer (RGBA and depth floats and a hit
+// key: 24 B), the composited copy waiting for the writer (24 B) and its encoded file (at most
+// 12 B for EXR half RGBA and float Z).
+constexpr double kBytesPerPixel = 60;
+
+std::string gigabytes(double bytes) {
+  std::ostringstream out;
+  out.precision(3);
+  out << bytes / 1e9 << " GB";
+  return out.str();
+}
+
+std::string image_memory(double pixels) {
+  return "about " + gigabytes(pixels * kBytesPerPixel) + " at " +
+         std::to_string(static_cast<int>(kBytesPerPixel)) + " bytes per pixel";
+}
+
+// A side outside [1, kMaxImageSide]; a too large one names the memory of the whole image.
+void check_image_side(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                      std::int64_t side, std::int64_t width, std::int64_t height) {
+  if (side >= 1 && side <= kMaxImageSide) return;
+  std::string what =
+      "value " + std::to_string(side) + " is outside [1, " + std::to_string(kMaxImageSide) + "]";
+  if (side > kMaxImageSide) {
+    what += "; a " + std::to_string(width) + " x " + std::to_string(height) + " image would need " +
+            image_memory(static_cast<double>(width) * static_cast<double>(height));
+  }
+  r.fail(node, key, what);
 }
 
 void parse_image(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
   r.allow_keys(node, key, {"width", "height"});
-  if (node["width"])
-    s.width = static_cast<int>(r.integer_in(node["width"], child_key(key, "width"), 1, 16384));
-  if (node["height"]) {
-    s.height = static_cast<int>(r.integer_in(node["height"], child_key(key, "height"), 1, 16384));
-  }
+  const std::string width_key = child_key(key, "width"), height_key = child_key(key, "height");
+  const std::int64_t width = node["width"] ? r.integer(node["width"], width_key) : s.width;
+  const std::int64_t height = node["height"] ? r.integer(node["height"], height_key) : s.height;
+  if (node["width"]) check_image_side(r, node["width"], width_key, width, width, height);
+  if (node["height"]) check_image_side(r, node["height"], height_key, height, width, height);
+  s.width = static_cast<int>(width);
+  s.height = static_cast<int>(height);
 }
 
 void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
@@ -160,8 +206,9 @@ void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string
 }
 
 void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
-  const auto values = r.numbers(node["isovalues"], child_key(key, "isovalues"), 1,
-                                static_cast<std::size_t>(render::kMaxIsovalues));
+  const auto values = r.numbers_in(node["isovalues"], child_key(key, "isovalues"), 1,
+                                   static_cast<std::size_t>(render::kMaxIsovalues),
+                                   -render::kMaxFieldValue, render::kMaxFieldValue);
   const YAML::Node colors = node["colors"];
   if (colors) {
     r.expect_list(colors, child_key(key, "colors"));
@@ -208,7 +255,8 @@ void parse_coloring(const YamlReader& r, const YAML::Node& node, const std::stri
       r.choice(range, range_key, {"auto"});
       return;
     }
-    const auto lo_hi = r.numbers(range, range_key, 2, 2);
+    const auto lo_hi =
+        r.numbers_in(range, range_key, 2, 2, -render::kMaxFieldValue, render::kMaxFieldValue);
     if (!(lo_hi[0] < lo_hi[1])) r.fail(range, range_key, "needs low < high");
     s.color_range = {false, static_cast<float>(lo_hi[0]), static_cast<float>(lo_hi[1])};
   }
@@ -260,6 +308,19 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   return s;
 }
 
+// Every scene keeps its own image: together they must stay within kMaxTotalPixels.
+void check_total_pixels(const YamlReader& r, const YAML::Node& node,
+                        const std::vector<Scene>& scenes) {
+  double pixels = 0;
+  for (const Scene& s : scenes) pixels += static_cast<double>(s.width) * s.height;
+  if (pixels <= static_cast<double>(kMaxTotalPixels)) return;
+  r.fail(node, "scenes",
+         "the scenes' images hold " + std::to_string(static_cast<std::int64_t>(pixels)) +
+             " pixels together, more than the limit of " + std::to_string(kMaxTotalPixels) + " (" +
+             std::to_string(kMaxImageSide) + " x " + std::to_string(kMaxImageSide) +
+             "); they would need " + image_memory(pixels));
+}
+
 Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source,
                   int rank_count) {
   r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite"});
@@ -279,6 +340,12 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
   if (!scenes) r.fail(root, "scenes", "missing (required): list at least one scene");
   r.expect_list(scenes, "scenes");
   if (scenes.size() == 0) r.fail(scenes, "scenes", "list at least one scene");
+  if (scenes.size() > kMaxScenes) {
+    r.fail(scenes, "scenes",
+           std::to_string(scenes.size()) + " scenes exceed the limit of " +
+               std::to_string(kMaxScenes) + "; their default 1024 x 1024 images alone would need " +
+               image_memory(static_cast<double>(scenes.size()) * 1024 * 1024));
+  }
   std::set<std::string> names;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string key = item_key("scenes", i);
@@ -287,6 +354,7 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
       r.fail(scenes[i]["name"], child_key(key, "name"), "duplicate scene name");
     }
   }
+  check_total_pixels(r, scenes, config.scenes);
   return config;
 }
 
@@ -294,6 +362,11 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
 
 ParseResult parse_config(std::string_view yaml, const std::string& source, int rank_count) {
   ParseResult result;
+  if (yaml.size() > kMaxConfigBytes) {
+    result.error = source + ": the config is " + std::to_string(yaml.size()) +
+                   " bytes, more than the limit of " + std::to_string(kMaxConfigBytes) + " bytes";
+    return result;
+  }
   try {
     const YAML::Node root = YAML::Load(std::string(yaml));
     YamlReader reader(source);

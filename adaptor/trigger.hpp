@@ -12,14 +12,13 @@ class TriggerClock {
  public:
   explicit TriggerClock(const config::Trigger& trigger) : trigger_(trigger) {}
 
-  bool due(std::int64_t step, double time) const {
-    if (trigger_.every_time > 0) return !rendered_ || time >= next_time_;
-    const std::int64_t n = trigger_.every_steps;
-    return ((step % n) + n) % n == 0;
-  }
+  // A time trigger is never due at a NaN or infinite time (the step renders no scene of that
+  // trigger, and the schedule is unchanged); a step trigger ignores the time.
+  bool due(std::int64_t step, double time) const;
 
   // After a render at `time`, the next time trigger is the next multiple of T strictly after
-  // it. The small tolerance keeps times like 0.1 * 3 (= 0.30000000000000004) on schedule.
+  // it. The small tolerance keeps times like 0.1 * 3 (= 0.30000000000000004) on schedule. A
+  // period too small to step from `time` (T below its rounding) makes every later time due.
   void mark_rendered(double time);
 
  private:

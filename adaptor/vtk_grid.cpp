@@ -22,11 +22,18 @@
 namespace tetray::vtkio {
 namespace {
 
-// Empty when every cell is a tet; otherwise names the first cell that is not.
+// Empty when every cell is a tet; otherwise names the first cell that is not. A file may
+// declare fewer cell types than cells: those cells have no type.
 std::string first_non_tet(vtkUnstructuredGrid* grid) {
   const vtkIdType cell_count = grid->GetNumberOfCells();
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  const vtkIdType typed = types ? types->GetNumberOfTuples() : 0;
+  if (typed < cell_count) {
+    return "cell " + std::to_string(typed) + " has no cell type (" + std::to_string(typed) +
+           " types for " + std::to_string(cell_count) + " cells)";
+  }
   for (vtkIdType cell = 0; cell < cell_count; ++cell) {
-    const int type = grid->GetCellType(cell);
+    const int type = types->GetValue(cell);
     if (type == VTK_TETRA) continue;
     const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
     return "cell " + std::to_string(cell) + " is a " + (name ? name : "cell of unknown type") +
@@ -45,19 +52,39 @@ std::vector<double> copy_points(vtkUnstructuredGrid* grid) {
   return xyz;
 }
 
-// All cells are tets, so the connectivity array is the 4-per-tet list itself.
-std::vector<std::int64_t> copy_tets(vtkUnstructuredGrid* grid) {
-  vtkCellArray* cells = grid->GetCells();
-  if (!cells) return {};
-  std::vector<std::int64_t> tets(4 * static_cast<std::size_t>(cells->GetNumberOfCells()));
-  if (cells->IsStorage64Bit()) {
-    const auto* ids = cells->GetConnectivityArray64()->GetPointer(0);
-    std::copy(ids, ids + tets.size(), tets.begin());
-  } else {
-    const auto* ids = cells->GetConnectivityArray32()->GetPointer(0);
-    std::copy(ids, ids + tets.size(), tets.begin());
+// The 4 ids of every tet. The type array says "tet" but only the offsets say how many ids a
+// cell has: a file whose offsets do not step by 4 from 0 to the end of the connectivity is
+// refused (a cell with 3 ids would otherwise borrow its neighbour's).
+template <typename Ids>
+std::string copy_tet_ids(const Ids* offsets, vtkIdType cells, const Ids* ids, vtkIdType id_count,
+                         std::vector<std::int64_t>& tets) {
+  if (offsets[0] != 0 || offsets[cells] != id_count) {
+    return "the cell offsets span [" + std::to_string(offsets[0]) + ", " +
+           std::to_string(offsets[cells]) + ") of a connectivity of " + std::to_string(id_count) +
+           " point ids";
   }
-  return tets;
+  for (vtkIdType cell = 0; cell < cells; ++cell) {
+    if (offsets[cell + 1] - offsets[cell] != 4) {
+      return "cell " + std::to_string(cell) + " is a tet with " +
+             std::to_string(offsets[cell + 1] - offsets[cell]) + " point ids (a tet has 4)";
+    }
+  }
+  tets.assign(ids, ids + id_count);
+  return {};
+}
+
+std::string copy_tets(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& tets) {
+  vtkCellArray* cells = grid->GetCells();
+  if (!cells || cells->GetNumberOfCells() == 0) return {};
+  const vtkIdType count = cells->GetNumberOfCells();
+  if (cells->IsStorage64Bit()) {
+    return copy_tet_ids(cells->GetOffsetsArray64()->GetPointer(0), count,
+                        cells->GetConnectivityArray64()->GetPointer(0),
+                        cells->GetNumberOfConnectivityIds(), tets);
+  }
+  return copy_tet_ids(cells->GetOffsetsArray32()->GetPointer(0), count,
+                      cells->GetConnectivityArray32()->GetPointer(0),
+                      cells->GetNumberOfConnectivityIds(), tets);
 }
 
 std::vector<std::uint8_t> copy_ghosts(vtkUnstructuredGrid* grid) {
@@ -114,8 +141,9 @@ bool from_vtk(vtkUnstructuredGrid* grid, TetGrid& out, std::string& error) {
   }
   error = first_non_tet(grid);
   if (!error.empty()) return false;
+  error = copy_tets(grid, out.tets);
+  if (!error.empty()) return false;
   out.points = copy_points(grid);
-  out.tets = copy_tets(grid);
   out.ghost = copy_ghosts(grid);
   out.point_fields = copy_point_fields(grid);
   error = size_mismatch(out);

@@ -65,12 +65,17 @@ double YamlReader::number_in(const YAML::Node& node, std::string_view key, doubl
   return value;
 }
 
-std::int64_t YamlReader::integer_in(const YAML::Node& node, std::string_view key, std::int64_t lo,
-                                    std::int64_t hi) const {
+std::int64_t YamlReader::integer(const YAML::Node& node, std::string_view key) const {
   std::int64_t value = 0;
   if (!node.IsScalar() || !YAML::convert<std::int64_t>::decode(node, value)) {
     fail(node, key, "expected an integer");
   }
+  return value;
+}
+
+std::int64_t YamlReader::integer_in(const YAML::Node& node, std::string_view key, std::int64_t lo,
+                                    std::int64_t hi) const {
+  const std::int64_t value = integer(node, key);
   if (value < lo || value > hi) {
     fail(node, key,
          "value " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
@@ -112,6 +117,14 @@ std::vector<double> YamlReader::numbers(const YAML::Node& node, std::string_view
   }
   std::vector<double> out;
   for (std::size_t i = 0; i < node.size(); ++i) out.push_back(number(node[i], item_key(key, i)));
+  return out;
+}
+
+std::vector<double> YamlReader::numbers_in(const YAML::Node& node, std::string_view key,
+                                           std::size_t min_size, std::size_t max_size, double lo,
+                                           double hi) const {
+  std::vector<double> out = numbers(node, key, min_size, max_size);
+  for (std::size_t i = 0; i < out.size(); ++i) number_in(node[i], item_key(key, i), lo, hi);
   return out;
 }
 

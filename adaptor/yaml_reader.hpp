@@ -34,6 +34,7 @@ class YamlReader {
 
   double number(const YAML::Node& node, std::string_view key) const;  // finite
   double number_in(const YAML::Node& node, std::string_view key, double lo, double hi) const;
+  std::int64_t integer(const YAML::Node& node, std::string_view key) const;
   std::int64_t integer_in(const YAML::Node& node, std::string_view key, std::int64_t lo,
                           std::int64_t hi) const;
   bool boolean(const YAML::Node& node, std::string_view key) const;
@@ -44,6 +45,9 @@ class YamlReader {
   // A list of numbers with a length in [min_size, max_size].
   std::vector<double> numbers(const YAML::Node& node, std::string_view key, std::size_t min_size,
                               std::size_t max_size) const;
+  // The same, each number in [lo, hi].
+  std::vector<double> numbers_in(const YAML::Node& node, std::string_view key, std::size_t min_size,
+                                 std::size_t max_size, double lo, double hi) const;
 
  private:
   std::string source_;

@@ -167,23 +167,10 @@ bool load(const std::string& path, SolverConfig& config, std::string& tetray_yam
     error = path + ": " + e.what();
     return false;
   }
-  for (const auto& entry : root)
-    if (const auto key = entry.first.as<std::string>(); key != "solver" && key != "tetray") {
-      error = path + ": " + key + " (line " + std::to_string(entry.first.Mark().line + 1) +
-              "): unknown key; expected solver and tetray";
-      return false;
-    }
-  if (!root["tetray"]) {
-    error = path + ": tetray: missing section";
-    return false;
-  }
-  if (!parse_solver_config(root["solver"], config, error)) {
+  if (!parse_run_config(root, config, tetray_yaml, error)) {
     error = path + ": " + error;
     return false;
   }
-  YAML::Emitter emitter;
-  emitter << root["tetray"];
-  tetray_yaml = emitter.c_str();
   return true;
 }
 

@@ -9,12 +9,13 @@ namespace minisolver {
 namespace {
 
 std::int64_t grid_index(std::array<int, 3> ijk, std::array<int, 3> cells) {
-  return (static_cast<std::int64_t>(ijk[2]) * (cells[1] + 1) + ijk[1]) * (cells[0] + 1) + ijk[0];
+  return (static_cast<std::int64_t>(ijk[2]) * (std::int64_t{cells[1]} + 1) + ijk[1]) *
+             (std::int64_t{cells[0]} + 1) +
+         ijk[0];
 }
 
 void add_grid_points(std::array<int, 3> cells, const ParameterMap& map, Mesh& mesh) {
-  const std::size_t count =
-      static_cast<std::size_t>(cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1);
+  const std::size_t count = grid_counts(cells).points;
   mesh.points.reserve(3 * count);
   mesh.faces.reserve(count);
   for (int k = 0; k <= cells[2]; ++k)
@@ -50,6 +51,15 @@ void add_hex_tets(std::array<int, 3> ijk, std::array<int, 3> cells, Mesh& mesh) 
 
 }  // namespace
 
+GridCounts grid_counts(std::array<int, 3> cells) {
+  GridCounts counts{1, 6};
+  for (const int n : cells) {
+    counts.points *= static_cast<std::uint64_t>(n) + 1;
+    counts.tets *= static_cast<std::uint64_t>(n);
+  }
+  return counts;
+}
+
 std::uint8_t grid_point_faces(std::array<int, 3> ijk, std::array<int, 3> cells) {
   std::uint8_t bits = 0;
   for (int a = 0; a < 3; ++a) {
@@ -62,7 +72,7 @@ std::uint8_t grid_point_faces(std::array<int, 3> ijk, std::array<int, 3> cells) 
 Mesh make_mapped_grid(std::array<int, 3> cells, const ParameterMap& map) {
   Mesh mesh;
   add_grid_points(cells, map, mesh);
-  mesh.tets.reserve(24 * static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
+  mesh.tets.reserve(4 * grid_counts(cells).tets);
   for (int k = 0; k < cells[2]; ++k)
     for (int j = 0; j < cells[1]; ++j)
       for (int i = 0; i < cells[0]; ++i) add_hex_tets({i, j, k}, cells, mesh);

@@ -36,6 +36,14 @@ struct Mesh {
   Vec3 point(std::size_t i) const { return {points[3 * i], points[3 * i + 1], points[3 * i + 2]}; }
 };
 
+// Points and tets of a grid of `cells` hexahedra (any of the mesh kinds), in 64 bits, so that a
+// configuration can be checked before anything is allocated.
+struct GridCounts {
+  std::uint64_t points = 0;
+  std::uint64_t tets = 0;
+};
+GridCounts grid_counts(std::array<int, 3> cells);
+
 // Face bits of grid point (i, j, k) in a grid of `cells` hexahedra.
 std::uint8_t grid_point_faces(std::array<int, 3> ijk, std::array<int, 3> cells);
 

@@ -37,7 +37,9 @@ struct Bisection {
     }
     const int middle = (first_part + last_part) / 2;
     const double total = weight(first_part, last_part);
-    const double fraction = total > 0 ? weight(first_part, middle) / total : 0.5;
+    // Clamped: weights the config did not check (negative, NaN) must not cut outside the tets.
+    const double share = total > 0 ? weight(first_part, middle) / total : 0.5;
+    const double fraction = std::isfinite(share) ? std::clamp(share, 0.0, 1.0) : 0.5;
     const auto left =
         static_cast<std::ptrdiff_t>(std::llround(fraction * static_cast<double>(tets.size())));
     const int axis = longest_axis(tets);
@@ -69,7 +71,8 @@ std::vector<std::int32_t> partition_rcb(const Mesh& mesh, int parts,
   std::vector<std::int32_t> part(mesh.tet_count(), 0);
   std::vector<std::int64_t> order(mesh.tet_count());
   std::iota(order.begin(), order.end(), 0);
-  const Bisection bisection{centroids, weights.empty() ? std::span<const double>(equal) : weights,
+  const bool one_per_part = weights.size() == equal.size();
+  const Bisection bisection{centroids, one_per_part ? weights : std::span<const double>(equal),
                             part};
   bisection.split(order, 0, parts);
   return part;

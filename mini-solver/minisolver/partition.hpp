@@ -11,7 +11,8 @@
 
 namespace minisolver {
 
-// The part of every tet; weights has one entry per part (equal weights when empty).
+// The part of every tet; weights has one entry per part (equal weights when it has not, e.g.
+// when empty). A negative or NaN weight counts as no share of its cut.
 std::vector<std::int32_t> partition_rcb(const Mesh& mesh, int parts,
                                         std::span<const double> weights = {});
 

@@ -1,7 +1,13 @@
 #include "minisolver/solver_config.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <initializer_list>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace minisolver {
@@ -12,14 +18,23 @@ struct ConfigError : std::runtime_error {
 };
 
 [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) {
-  throw ConfigError(key + " (line " + std::to_string(node.Mark().line + 1) + "): " + what);
+  // An empty document has no position.
+  const YAML::Mark mark = node.Mark();
+  const std::string line = mark.is_null() ? "" : " (line " + std::to_string(mark.line + 1) + ")";
+  throw ConfigError(key + line + ": " + what);
+}
+
+// A map key as text; a key that is a list or a map is an error (YAML allows it, no key here is).
+std::string key_name(const YAML::Node& name, const std::string& key) {
+  if (!name.IsScalar()) fail(name, key, "a key must be a name, not a list or a map");
+  return name.Scalar();
 }
 
 void allow_keys(const YAML::Node& node, const std::string& key,
                 std::initializer_list<std::string> allowed) {
   if (!node.IsMap()) fail(node, key, "expected a map");
   for (const auto& entry : node) {
-    const auto name = entry.first.as<std::string>();
+    const std::string name = key_name(entry.first, key);
     if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
       fail(entry.first, key + "." + name, "unknown key");
   }
@@ -71,6 +86,46 @@ std::uint8_t faces(const YAML::Node& node, const std::string& key) {
   return bits;
 }
 
+// A rough figure of the whole run's memory per hexahedron of the grid, every rank building the
+// whole mesh: 6 tets of 4 int64 ids and a material (216 B), a point of coordinates and face bits
+// (25 B), the heat matrix (about 15 entries of 12 B per row: 180 B), the elasticity matrix (3
+// rows of about 45 entries: 1620 B) and some 20 vectors per degree of freedom (640 B).
+constexpr double kBytesPerHex = 2700;
+// The renderer and the solver's partition index tets with 32 bits.
+constexpr std::uint64_t kMaxTets = std::numeric_limits<std::int32_t>::max();
+
+std::string gigabytes(double bytes) {
+  std::ostringstream out;
+  out.precision(3);
+  out << bytes / 1e9 << " GB";
+  return out.str();
+}
+
+double physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page_size = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page_size > 0 ? static_cast<double>(pages) * static_cast<double>(page_size)
+                                    : std::numeric_limits<double>::infinity();
+}
+
+// Refuses a grid the run could not hold, before anything is allocated.
+void check_mesh_size(const YAML::Node& node, const std::string& key, std::array<int, 3> cells) {
+  const GridCounts counts = grid_counts(cells);
+  const double hexes = static_cast<double>(counts.tets / 6);
+  const std::string needs = "; it would need about " + gigabytes(hexes * kBytesPerHex) +
+                            " (about " + std::to_string(static_cast<int>(kBytesPerHex)) +
+                            " bytes per cell)";
+  if (counts.tets > kMaxTets) {
+    fail(node, key,
+         std::to_string(counts.tets) + " tets exceed the limit of " + std::to_string(kMaxTets) +
+             " (32-bit tet indices)" + needs);
+  }
+  const double memory = physical_memory_bytes();
+  if (hexes * kBytesPerHex > memory) {
+    fail(node, key, "the mesh does not fit this machine's " + gigabytes(memory) + needs);
+  }
+}
+
 void parse_mesh(const YAML::Node& node, MeshConfig& mesh) {
   const std::string key = "solver.mesh";
   allow_keys(node, key, {"kind", "cells", "lo", "hi", "jitter", "inner_radius", "outer_radius"});
@@ -82,6 +137,7 @@ void parse_mesh(const YAML::Node& node, MeshConfig& mesh) {
     mesh.cells = fixed_list<3, int>(node["cells"], key + ".cells", "integers");
     if (*std::min_element(mesh.cells.begin(), mesh.cells.end()) < 1)
       fail(node["cells"], key + ".cells", "must be >= 1");
+    check_mesh_size(node["cells"], key + ".cells", mesh.cells);
   }
   if (node["lo"]) mesh.lo = fixed_list<3, double>(node["lo"], key + ".lo", "numbers");
   if (node["hi"]) mesh.hi = fixed_list<3, double>(node["hi"], key + ".hi", "numbers");
@@ -197,8 +253,15 @@ void parse(const YAML::Node& solver, SolverConfig& config) {
     allow_keys(p, "solver.partition", {"weights"});
     if (!p["weights"].IsSequence())
       fail(p, "solver.partition.weights", "expected a list of numbers");
-    for (const auto& w : p["weights"])
-      config.partition_weights.push_back(scalar<double>(w, "solver.partition.weights", "a number"));
+    for (const auto& w : p["weights"]) {
+      const double weight = scalar<double>(w, "solver.partition.weights", "a number");
+      if (!(weight >= 0 && std::isfinite(weight)))
+        fail(w, "solver.partition.weights", "a weight must be a finite number >= 0");
+      config.partition_weights.push_back(weight);
+    }
+    const auto& weights = config.partition_weights;
+    if (std::none_of(weights.begin(), weights.end(), [](double w) { return w > 0; }))
+      fail(p["weights"], "solver.partition.weights", "give at least one weight > 0");
   }
   if (solver["time"]) parse_time(solver["time"], config);
   const CgSettings cg = solver["cg"] ? parse_cg(solver["cg"]) : CgSettings{};
@@ -230,6 +293,32 @@ bool parse_solver_config(const YAML::Node& solver, SolverConfig& config, std::st
     error = e.what();
   } catch (const YAML::Exception& e) {
     error = std::string("solver: ") + e.what();
+  }
+  return false;
+}
+
+bool parse_run_config(const YAML::Node& root, SolverConfig& config, std::string& tetray_yaml,
+                      std::string& error) {
+  try {
+    if (!root.IsMap()) fail(root, "(document)", "expected a map with solver and tetray sections");
+    for (const auto& entry : root) {
+      const std::string name = key_name(entry.first, "(document)");
+      if (name != "solver" && name != "tetray")
+        fail(entry.first, name, "unknown key; expected solver and tetray");
+    }
+    if (!root["tetray"]) {
+      error = "tetray: missing section";
+      return false;
+    }
+    if (!parse_solver_config(root["solver"], config, error)) return false;
+    YAML::Emitter emitter;
+    emitter << root["tetray"];
+    tetray_yaml = emitter.c_str();
+    return true;
+  } catch (const ConfigError& e) {
+    error = e.what();
+  } catch (const YAML::Exception& e) {
+    error = std::string("(document): ") + e.what();
   }
   return false;
 }

@@ -56,7 +56,15 @@ struct SolverConfig {
   std::optional<ElasticConfig> elasticity;
 };
 
-// False with `error` set ("solver.heat.schem (line 12): unknown key") on any problem.
+// False with `error` set ("solver.heat.schem (line 12): unknown key") on any problem. A mesh
+// of more than 2^31 - 1 tets, or one whose estimated memory exceeds this machine's, is refused
+// with the memory it would need.
 bool parse_solver_config(const YAML::Node& solver, SolverConfig& config, std::string& error);
+
+// The whole tetray-minisolver document: a map of exactly `solver` and `tetray`; the solver
+// section is parsed into `config` and the tetray section given back as YAML text for the
+// adaptor. False with `error` set on any problem, whatever the document holds.
+bool parse_run_config(const YAML::Node& root, SolverConfig& config, std::string& tetray_yaml,
+                      std::string& error);
 
 }  // namespace minisolver

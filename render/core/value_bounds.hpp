@@ -1,4 +1,5 @@
-// Value ranges and bounding boxes in double precision that ignore non-finite values: the local
+// Value ranges and bounding boxes in double precision that ignore non-finite values and values
+// beyond the renderer's float range: the local
 // parts of the global quantities (global_reduce.hpp) and the bounds that place the vertex
 // store's origin.
 #pragma once
@@ -12,14 +13,23 @@
 
 namespace tetray::render {
 
+// What the renderer's float vertex store (render/volume/tet_volume.hpp) can hold: the tracer
+// multiplies up to three coordinate differences in float (edge tests, plane distances), so
+// |coordinate| <= 1e12 keeps every product below float's 3.4e38; field values are only
+// interpolated and differenced, so |value| <= 1e30 leaves them eight orders of headroom. The
+// mesh check refuses (or skips) what lies beyond, and the ranges below ignore it.
+inline constexpr double kMaxCoordinate = 1e12;
+inline constexpr double kMaxFieldValue = 1e30;
+
 struct ValueRange {
   double lo = std::numeric_limits<double>::infinity();
   double hi = -std::numeric_limits<double>::infinity();
 
   bool empty() const { return !(lo <= hi); }
-  // Non-finite values are ignored: they have no place on a colormap or in a camera fit.
+  // Non-finite values and those beyond kMaxFieldValue are ignored: they have no place on a
+  // colormap or in a camera fit.
   void include(double value) {
-    if (!std::isfinite(value)) return;
+    if (!(std::abs(value) <= kMaxFieldValue)) return;
     lo = std::min(lo, value);
     hi = std::max(hi, value);
   }
@@ -29,7 +39,11 @@ struct BoundingBox {
   ValueRange axis[3];
 
   bool empty() const { return axis[0].empty() || axis[1].empty() || axis[2].empty(); }
+  // A point with a coordinate beyond kMaxCoordinate (or NaN) is ignored as a whole.
   void include(Vec3d point) {
+    for (int a = 0; a < 3; ++a) {
+      if (!(std::abs(point[a]) <= kMaxCoordinate)) return;
+    }
     for (int a = 0; a < 3; ++a) axis[a].include(point[a]);
   }
   void merge(const BoundingBox& other) {

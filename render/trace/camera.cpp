@@ -1,11 +1,21 @@
 #include "render/trace/camera.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 namespace tetray::render {
 
-CameraFrame make_frame(const Camera& camera) {
+namespace {
+
+bool finite(Vec3d v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool finite(const CameraFrame& f) {
+  return finite(f.eye) && finite(f.forward) && finite(f.right) && finite(f.up) &&
+         std::isfinite(f.scale_x) && std::isfinite(f.scale_y);
+}
+
+CameraFrame frame_of(const Camera& camera) {
   CameraFrame frame;
   frame.eye = camera.eye;
   frame.forward = normalize(camera.look_at - camera.eye);
@@ -15,6 +25,20 @@ CameraFrame make_frame(const Camera& camera) {
   frame.scale_y = tan_half;
   frame.scale_x = tan_half * static_cast<double>(camera.width) / camera.height;
   return frame;
+}
+
+}  // namespace
+
+CameraFrame make_frame(const Camera& camera) {
+  const CameraFrame frame = frame_of(camera);
+  if (finite(frame)) return frame;
+  // A degenerate camera (NaN, eye on look_at, up zero or along the view) would send NaN rays
+  // into the traversal; it draws the default view of its image size instead. The config and
+  // tetray-render refuse such cameras first.
+  Camera fallback;
+  fallback.width = camera.width;
+  fallback.height = camera.height;
+  return frame_of(fallback);
 }
 
 namespace {
@@ -54,6 +78,13 @@ PixelDirections::PixelDirections(const CameraFrame& frame, const Camera& camera)
 
 Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,
                   int height) {
+  // A box that is empty or not finite (no points, or points the mesh check did not bound) is
+  // fitted as the unit box, never as a NaN or infinite eye.
+  if (!finite(lo) || !finite(hi) || !finite(hi - lo) ||
+      !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) {
+    lo = {-1, -1, -1};
+    hi = {1, 1, 1};
+  }
   const Vec3d center = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * length(hi - lo), 1e-12);
   const double tan_half = std::tan(fov_deg * std::numbers::pi / 360.0);

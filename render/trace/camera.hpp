@@ -30,6 +30,8 @@ struct CameraFrame {
   Vec3d direction_at(double px, double py, int width, int height) const;
 };
 
+// Always finite: a degenerate camera (NaN, up zero or along the view) gives the frame of the
+// default Camera{} with the same image size.
 CameraFrame make_frame(const Camera& camera);
 
 // Normalized ray direction through the center of pixel (i, j), in double precision.
@@ -55,6 +57,7 @@ inline double view_depth(const CameraFrame& frame, Vec3d hit) {
 
 // A camera that looks at the box [lo, hi] from direction `from_direction` (pointing from the
 // target towards the eye) so that the whole box fits the vertical and horizontal field of view.
+// An empty or non-finite box is fitted as [-1, 1]^3.
 Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,
                   int height);
 

@@ -36,24 +36,44 @@ Findings find_all(std::size_t n, Pred&& found) {
       });
 }
 
-bool finite_point(const PointSource& points, std::size_t i) {
+// Finite and within +-limit (NaN fails both comparisons).
+bool representable(double v, double limit) { return v >= -limit && v <= limit; }
+
+// The first coordinate of point i (with displacement) outside the range, else its x: what the
+// check tests and the message names.
+double extreme_coordinate(const PointSource& points, std::size_t i) {
   return with_points(points, [&](const auto* xyz, const auto* disp) {
     double p[3];
     point_position(xyz, disp, i, p);
-    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    for (double c : p) {
+      if (!representable(c, kMaxCoordinate)) return c;
+    }
+    return p[0];
   });
 }
 
-bool finite_value(const FieldSource& field, std::size_t i) {
+double field_value(const FieldSource& field, std::size_t i) {
   return with_scalar(field.kind, [&](auto tag) {
-    return static_cast<bool>(std::isfinite(static_cast<const decltype(tag)*>(field.values)[i]));
+    return static_cast<double>(static_cast<const decltype(tag)*>(field.values)[i]);
   });
 }
 
-std::string describe(const char* what, const Findings& f) {
+bool good_point(const PointSource& points, std::size_t i) {
+  return representable(extreme_coordinate(points, i), kMaxCoordinate);
+}
+
+bool good_value(const FieldSource& field, std::size_t i) {
+  return representable(field_value(field, i), kMaxFieldValue);
+}
+
+// "non-finite coordinate nan at point 3 (1 such point); ..." or "coordinate 1e+308 at point 3
+// (1 such point) is beyond the renderer's float range +-1e+12; ...".
+std::string describe(const char* what, double value, double limit, const Findings& f) {
   std::ostringstream out;
-  out << what << " at point " << f.first << " (" << f.count << " such point"
-      << (f.count == 1 ? "" : "s") << "); policy is 'error'";
+  out << (std::isfinite(value) ? "" : "non-finite ") << what << ' ' << value << " at point "
+      << f.first << " (" << f.count << " such point" << (f.count == 1 ? "" : "s") << ")";
+  if (std::isfinite(value)) out << " is beyond the renderer's float range +-" << limit;
+  out << "; policy is 'error'";
   return out.str();
 }
 
@@ -88,17 +108,19 @@ MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& poin
     return check;
   }
   const Findings bad_points =
-      find_all(points.count, [&](std::size_t i) { return !finite_point(points, i); });
+      find_all(points.count, [&](std::size_t i) { return !good_point(points, i); });
   const Findings bad_values =
-      field.values ? find_all(field.count, [&](std::size_t i) { return !finite_value(field, i); })
+      field.values ? find_all(field.count, [&](std::size_t i) { return !good_value(field, i); })
                    : Findings{};
   check.nonfinite_points = bad_points.count;
   check.nonfinite_values = bad_values.count;
   if (policy == NonFinitePolicy::error) {
     if (bad_points.count) {
-      check.error = describe("non-finite coordinate", bad_points);
+      check.error = describe("coordinate", extreme_coordinate(points, bad_points.first),
+                             kMaxCoordinate, bad_points);
     } else if (bad_values.count) {
-      check.error = describe("non-finite field value", bad_values);
+      check.error =
+          describe("field value", field_value(field, bad_values.first), kMaxFieldValue, bad_values);
     }
     return check;
   }
@@ -106,7 +128,7 @@ MeshCheck check_mesh(std::span<const std::int64_t> tets, const PointSource& poin
   auto bad = [&](std::int64_t p) {
     if (p < 0 || p >= n) return true;
     const auto i = static_cast<std::size_t>(p);
-    return !finite_point(points, i) || (field.values && !finite_value(field, i));
+    return !good_point(points, i) || (field.values && !good_value(field, i));
   };
   check.tets_skipped = find_all(tet_count, [&](std::size_t t) {
                          const std::int64_t* v = &tets[4 * t];

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "minisolver/partition.hpp"
 #include "minisolver/solver_config.hpp"
+#include "serial_cube.hpp"
 
 namespace minisolver {
 namespace {
@@ -172,6 +175,82 @@ TEST(SolverConfig, ImpossibleValuesAreNamedWithTheirLine) {
 TEST(SolverConfig, AStiffRegionMustSayWhereAndHowStiff) {
   expect_error(edited("axis: y, above: 0.5, ", "axis: y, "), "solver.stiff_region.above",
                "stiff_region:", "missing");
+}
+
+// Sizes that overflow int arithmetic, or a mesh no machine holds, are refused with the memory
+// they would need before anything is allocated (a mesh is built whole on every rank).
+TEST(SolverConfig, MeshesBeyondTheLimitsAreRefusedWithTheirMemory) {
+  expect_error(edited("cells: [4, 3, 2]", "cells: [2147483647, 1, 1]"), "solver.mesh.cells",
+               "2147483647", "12884901882 tets exceed the limit of 2147483647");
+  expect_error(edited("cells: [4, 3, 2]", "cells: [2147483647, 2147483647, 2147483647]"),
+               "solver.mesh.cells", "2147483647", "tets exceed the limit");
+  expect_error(edited("cells: [4, 3, 2]", "cells: [1000, 1000, 1000]"), "solver.mesh.cells", "1000",
+               "it would need about 2.7e+03 GB");
+  // At the tet limit (357913941 hexes, 6 tets each: 2147483646 tets) the figure is the memory.
+  expect_error(edited("cells: [4, 3, 2]", "cells: [357913941, 1, 1]"), "solver.mesh.cells",
+               "357913941", "does not fit this machine's");
+  expect_error(edited("cells: [4, 3, 2]", "cells: [0, 1, 1]"), "solver.mesh.cells", "[0, 1, 1]",
+               "must be >= 1");
+  SolverConfig c;
+  EXPECT_EQ(parse(edited("cells: [4, 3, 2]", "cells: [1, 1, 1]"), c), "");
+  EXPECT_EQ(grid_counts(c.mesh.cells).tets, 6u);
+}
+
+TEST(SolverConfig, PartitionWeightsMustBeFiniteAndNotNegative) {
+  expect_error(edited("weights: [1, 2]", "weights: [1, -2]"), "solver.partition.weights", "-2",
+               "finite number >= 0");
+  expect_error(edited("weights: [1, 2]", "weights: [1, .inf]"), "solver.partition.weights", ".inf",
+               "finite number >= 0");
+  expect_error(edited("weights: [1, 2]", "weights: [0, 0]"), "solver.partition.weights", "[0, 0]",
+               "at least one weight > 0");
+  SolverConfig c;
+  ASSERT_EQ(parse(edited("weights: [1, 2]", "weights: [0, 1]"), c), "");
+  EXPECT_EQ(c.partition_weights, (std::vector<double>{0, 1}));
+}
+
+TEST(SolverConfig, KeysThatAreListsOrMapsAreErrorsNotExceptions) {
+  expect_error(edited("  time: {steps: 7, dt: 0.003}", "  time: {[7, 8]: 7, dt: 0.003}"),
+               "solver.time", "[7, 8]", "a key must be a name");
+}
+
+// The whole document: whatever it holds, parse_run_config returns an error, never throws.
+TEST(SolverConfig, RunDocumentsOfAnyShapeGiveErrors) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"[1, 2, 3]", "(document) (line 1): expected a map"},
+      {"just a scalar", "(document) (line 1): expected a map"},
+      {"", "(document): expected a map"},
+      {"{[1, 2]: 3, tetray: {}}", "(document) (line 1): a key must be a name"},
+      {"solver: {}\nother: 1\ntetray: {}", "other (line 2): unknown key"},
+      {"solver: {time: {steps: 1}, heat: {}}", "tetray: missing section"},
+      {"tetray: {}", "solver: missing section"},
+      {"solver: [1]\ntetray: {}", "solver (line 1): expected a map"},
+  };
+  for (const auto& [yaml, expected] : cases) {
+    SolverConfig config;
+    std::string tetray_yaml, error;
+    EXPECT_FALSE(parse_run_config(YAML::Load(yaml), config, tetray_yaml, error)) << yaml;
+    EXPECT_EQ(error.rfind(expected, 0), 0u) << yaml << ": " << error;
+  }
+  SolverConfig config;
+  std::string tetray_yaml, error;
+  ASSERT_TRUE(
+      parse_run_config(YAML::Load(kValid + "tetray: {scenes: []}\n"), config, tetray_yaml, error))
+      << error;
+  EXPECT_EQ(YAML::Load(tetray_yaml)["scenes"].size(), 0u);
+  EXPECT_EQ(config.steps, 7);
+}
+
+// Weights the config refuses can still reach partition_rcb from code: a negative weight once
+// cut outside the tet list (a heap overflow). Every tet gets a part in [0, parts).
+TEST(SolverConfig, PartitionOfRefusedWeightsStaysInsideTheMesh) {
+  const Mesh mesh = testing::unit_cube(3);
+  const std::vector<std::vector<double>> cases{
+      {-1, 3, 1}, {2, 1, -2}, {std::nan(""), 1, 1}, {1, 2}};
+  for (const auto& weights : cases) {
+    const auto part = partition_rcb(mesh, 3, weights);
+    ASSERT_EQ(part.size(), mesh.tet_count());
+    for (const auto p : part) EXPECT_TRUE(p >= 0 && p < 3) << p;
+  }
 }
 
 // Every shipped config with a solver section (the README's demo, the examples) keeps one this

@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
     const double off_ns = off_trigger_ns(o, scene, o.out + "/off_trigger");
     print(o, scene.mesh.tet_count(), writer, inline_, off_ns);
   } catch (const CLI::ParseError& e) {
-    code = app.exit(e);
+    code = app.exit(e) == 0 ? 0 : 1;  // README: 1 on a usage error, 0 for --help
   }
   MPI_Finalize();
   return code;

@@ -20,7 +20,7 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    exit_code = app.exit(error);
+    exit_code = app.exit(error) == 0 ? 0 : 1;  // README: 1 on a usage error, 0 for --help
   }
   return options;
 }

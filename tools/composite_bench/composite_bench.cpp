@@ -371,7 +371,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    status = rank == 0 ? app.exit(error) : (error.get_exit_code() != 0 ? 1 : 0);
+    // README: 1 on a usage error, 0 for --help; only rank 0 prints.
+    status = (rank == 0 ? app.exit(error) : error.get_exit_code()) == 0 ? 0 : 1;
   }
   MPI_Finalize();
   return status;

@@ -149,7 +149,7 @@ std::optional<int> parse_render_options(int argc, char** argv, RenderOptions& op
     app.parse(argc, argv);
     check_isovalues(options.isovalues);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // README: 1 on a usage error, 0 for --help
   }
   apply_texts(texts, options);
   return std::nullopt;

@@ -95,7 +95,7 @@ int run(int argc, char** argv, int rank) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // README: 1 on a usage error, 0 for --help
   }
   std::vector<SeriesEntry> series;
   std::string error;

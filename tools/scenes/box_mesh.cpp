@@ -15,7 +15,8 @@ double unit_jitter(std::uint64_t point, int axis) {
 
 void add_points(const BoxMeshSpec& spec, BoxMesh& mesh) {
   const auto& c = spec.cells;
-  mesh.points.resize(3 * static_cast<std::size_t>(c[0] + 1) * (c[1] + 1) * (c[2] + 1));
+  mesh.points.resize(3 * (static_cast<std::size_t>(c[0]) + 1) *
+                     (static_cast<std::size_t>(c[1]) + 1) * (static_cast<std::size_t>(c[2]) + 1));
   for (int k = 0; k <= c[2]; ++k)
     for (int j = 0; j <= c[1]; ++j)
       for (int i = 0; i <= c[0]; ++i) {
@@ -26,7 +27,7 @@ void add_points(const BoxMeshSpec& spec, BoxMesh& mesh) {
           const double h = (spec.hi[a] - spec.lo[a]) / c[a];
           double x = spec.lo[a] + h * ijk[a];
           if (interior) x += spec.jitter * h * unit_jitter(static_cast<std::uint64_t>(p), a);
-          mesh.points[3 * p + a] = x;
+          mesh.points[3 * static_cast<std::size_t>(p) + a] = x;
         }
       }
 }

@@ -25,12 +25,16 @@ struct BoxMesh {
 
   std::size_t point_count() const { return points.size() / 3; }
   std::size_t tet_count() const { return tets.size() / 4; }
-  // Index of grid point (i, j, k).
+  // Index of grid point (i, j, k), in 64 bits (cells + 1 overflows int at INT_MAX cells).
   std::int64_t point_index(int i, int j, int k) const {
-    return (static_cast<std::int64_t>(k) * (cells[1] + 1) + j) * (cells[0] + 1) + i;
+    return (static_cast<std::int64_t>(k) * (std::int64_t{cells[1]} + 1) + j) *
+               (std::int64_t{cells[0]} + 1) +
+           i;
   }
 };
 
+// Needs cells >= 1 on every axis and memory for the mesh: (nx+1)(ny+1)(nz+1) points of 24 bytes
+// and 6 nx ny nz tets of 32 bytes; a caller taking cells from a user checks the sizes first.
 BoxMesh make_box_mesh(const BoxMeshSpec& spec);
 
 // The gyroid-twist benchmark scene of docs/architecture.md §6 at resolution n and time t: the

@@ -11,6 +11,7 @@
 
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/vtk_message_capture.hpp"
+#include "tools/vtk_io/xml_depth.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -58,6 +59,10 @@ bool read_pvd(const std::string& path, std::vector<SeriesEntry>& out, std::strin
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     error = "'" + path + "': no such file";
+    return false;
+  }
+  if (std::string problem = xml_depth_problem(path); !problem.empty()) {
+    error = "'" + path + "': " + problem;
     return false;
   }
   VtkMessageCapture capture;

@@ -1,4 +1,5 @@
-// VTK XML files of tet grids: .vtu and .pvtu in (VTK's readers), .vtu out (binary appended).
+// VTK XML files of tet grids: .vtu in (VTK's reader; .pvtu in pvtu.cpp), .vtu out (binary
+// appended).
 // VTK's printed errors are captured and returned as the error message.
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -11,7 +12,6 @@
 #include <vtkPoints.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLPUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
@@ -20,27 +20,13 @@
 #include <span>
 
 #include "render/image/image_write.hpp"
+#include "tools/vtk_io/grid_readers.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/vtk_message_capture.hpp"
+#include "tools/vtk_io/xml_depth.hpp"
 
 namespace tetray::vtkio {
 namespace {
-
-// Reads with reader type R; null with `error` set when VTK reported a failure.
-template <typename Reader>
-vtkSmartPointer<vtkUnstructuredGrid> read_with(const std::string& path, std::string& error) {
-  VtkMessageCapture capture;
-  vtkNew<Reader> reader;
-  capture.watch(reader.Get());
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
-  if (!capture.errors().empty() || reader->GetErrorCode() != 0 || !grid) {
-    error = capture.errors().empty() ? "the VTK reader failed" : capture.errors();
-    return nullptr;
-  }
-  return grid;
-}
 
 // Empty when the arrays are consistent: whole tuples, indices in range, one value per point
 // and per tet.
@@ -105,6 +91,22 @@ vtkSmartPointer<vtkUnstructuredGrid> to_vtk(const TetGrid& grid) {
 
 }  // namespace
 
+std::string read_vtu(const std::string& path, TetGrid& out) {
+  if (std::string problem = xml_depth_problem(path); !problem.empty()) return problem;
+  VtkMessageCapture capture;
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  capture.watch(reader.Get());
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  if (!capture.errors().empty() || reader->GetErrorCode() != 0 || !grid) {
+    return capture.errors().empty() ? "the VTK reader failed" : capture.errors();
+  }
+  std::string error;
+  from_vtk(grid, out, error);
+  return error;
+}
+
 bool read_grid(const std::string& path, TetGrid& out, std::string& error) {
   out = {};
   const std::string extension = std::filesystem::path(path).extension().string();
@@ -117,10 +119,11 @@ bool read_grid(const std::string& path, TetGrid& out, std::string& error) {
     error = "'" + path + "': no such file";
     return false;
   }
-  vtkSmartPointer<vtkUnstructuredGrid> grid =
-      extension == ".vtu" ? read_with<vtkXMLUnstructuredGridReader>(path, error)
-                          : read_with<vtkXMLPUnstructuredGridReader>(path, error);
-  if (grid && from_vtk(grid, out, error)) return true;
+  error = extension == ".vtu" ? read_vtu(path, out) : read_pvtu(path, out);
+  // Indices are checked here, so that a grid read from a file is whole whatever it is used for.
+  if (error.empty()) error = grid_problem(out);
+  if (error.empty()) return true;
+  out = {};
   error = "'" + path + "': " + error;
   return false;
 }

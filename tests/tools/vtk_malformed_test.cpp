@@ -1,0 +1,254 @@
+// Malformed VTK files and grids that once crashed the readers or were read wrong: a tet whose
+// cell has fewer than 4 point ids (it borrowed its neighbour's, a heap over-read at the end),
+// cells with no cell type, cells on a grid with no points, and XML nested so deep that VTK's
+// recursive element tree overflows the stack (.vtu, a .pvtu's piece, a .pvd series). Each must
+// be refused with a message naming the file and the cause.
+#include <gtest/gtest.h>
+#include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "support/scratch_dir.hpp"
+#include "tools/vtk_io/vtk_files.hpp"
+#include "tools/vtk_io/xml_depth.hpp"
+
+namespace tetray::vtkio {
+namespace {
+
+using testing::ScratchDir;
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+// Point field f = 0, 1, 2, 3 of a 4-point piece.
+const std::string kFieldF =
+    "<PointData><DataArray type=\"Float64\" Name=\"f\" format=\"ascii\">0 1 2 3</DataArray>"
+    "</PointData>\n";
+
+// A one-piece ASCII .vtu with the unit tet's points (or `points_xml`) and the given cells; with
+// 4 points also the field f.
+std::string vtu_text(const std::string& connectivity, const std::string& offsets,
+                     const std::string& types, int cells, int points = 4,
+                     const std::string& points_xml =
+                         "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                         "format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>") {
+  return R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <UnstructuredGrid>
+    <Piece NumberOfPoints=")" +
+         std::to_string(points) + "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n" +
+         (points == 4 ? kFieldF : "") + points_xml + R"(
+      <Cells>
+        <DataArray type="Int64" Name="connectivity" format="ascii">)" +
+         connectivity + R"(</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">)" +
+         offsets + R"(</DataArray>
+        <DataArray type="UInt8" Name="types" format="ascii">)" +
+         types + R"(</DataArray>
+      </Cells>
+    </Piece>
+  </UnstructuredGrid>
+</VTKFile>
+)";
+}
+
+// `depth` nested elements inside `outer_open` ... `outer_close`.
+std::string deeply_nested(const std::string& outer_open, const std::string& outer_close,
+                          int depth) {
+  std::string text = "<?xml version=\"1.0\"?>\n" + outer_open;
+  for (int k = 0; k < depth; ++k) text += "<a>";
+  for (int k = 0; k < depth; ++k) text += "</a>";
+  return text + outer_close;
+}
+
+std::string read_error(const std::string& path) {
+  TetGrid out;
+  std::string error;
+  EXPECT_FALSE(read_grid(path, out, error)) << path;
+  EXPECT_TRUE(out.tets.empty() && out.points.empty()) << path;
+  EXPECT_TRUE(contains(error, path)) << error;
+  return error;
+}
+
+TEST(VtkMalformed, ATetCellWithThreeIdsIsRefused) {
+  ScratchDir dir;
+  write_text(dir / "three.vtu", vtu_text("0 1 2", "3", "10", 1));
+  write_text(dir / "three_then_four.vtu", vtu_text("0 1 2 0 1 2 3", "3 7", "10 10", 2));
+  EXPECT_TRUE(contains(read_error(dir / "three.vtu"), "cell 0 is a tet with 3 point ids"));
+  EXPECT_TRUE(
+      contains(read_error(dir / "three_then_four.vtu"), "cell 0 is a tet with 3 point ids"));
+}
+
+TEST(VtkMalformed, ATetCellWithFiveIdsIsRefused) {
+  ScratchDir dir;
+  write_text(dir / "five.vtu", vtu_text("0 1 2 3 0 1 2 3", "5 8", "10 10", 2));
+  EXPECT_TRUE(contains(read_error(dir / "five.vtu"), "cell 0 is a tet with 5 point ids"));
+}
+
+// The bridge gets grids from solvers too: a cell array whose cells do not hold 4 ids each is
+// refused, not copied 4 ids at a time past the end of the connectivity.
+TEST(VtkMalformed, BridgeRefusesTetsOfTheWrongSize) {
+  vtkNew<vtkPoints> points;
+  for (int p = 0; p < 4; ++p) points->InsertNextPoint(p == 1, p == 2, p == 3);
+  vtkNew<vtkCellArray> cells;
+  const vtkIdType triangle[3] = {0, 1, 2};
+  cells->InsertNextCell(3, triangle);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->InsertNextValue(VTK_TETRA);
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(types, cells);
+  TetGrid out;
+  std::string error;
+  EXPECT_FALSE(from_vtk(grid, out, error));
+  EXPECT_TRUE(contains(error, "cell 0 is a tet with 3 point ids")) << error;
+}
+
+TEST(VtkMalformed, BridgeRefusesCellsWithoutATypeArray) {
+  vtkNew<vtkPoints> points;
+  for (int p = 0; p < 4; ++p) points->InsertNextPoint(p == 1, p == 2, p == 3);
+  vtkNew<vtkCellArray> cells;
+  const vtkIdType tet[4] = {0, 1, 2, 3};
+  cells->InsertNextCell(4, tet);
+  cells->InsertNextCell(4, tet);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->InsertNextValue(VTK_TETRA);  // one type for two cells
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(types, cells);
+  TetGrid out;
+  std::string error;
+  EXPECT_FALSE(from_vtk(grid, out, error));
+  EXPECT_TRUE(contains(error, "cell 1 has no cell type")) << error;
+}
+
+TEST(VtkMalformed, CellsOnAGridWithoutPointsAreRefused) {
+  ScratchDir dir;
+  const std::string no_points =
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+      "</DataArray></Points>";
+  write_text(dir / "no_points.vtu", vtu_text("0 1 2 3", "4", "10", 1, 0, no_points));
+  EXPECT_TRUE(contains(read_error(dir / "no_points.vtu"), "outside [0, 0)"));
+  write_text(dir / "no_points_element.vtu", vtu_text("0 1 2 3", "4", "10", 1, 4, ""));
+  read_error(dir / "no_points_element.vtu");
+}
+
+TEST(VtkMalformed, DeeplyNestedFilesAreRefusedBeforeVtkReadsThem) {
+  ScratchDir dir;
+  const int depth = 200000;  // enough to overflow VTK's recursive element destructor
+  write_text(dir / "deep.vtu",
+             deeply_nested("<VTKFile type=\"UnstructuredGrid\">", "</VTKFile>\n", depth));
+  EXPECT_TRUE(contains(read_error(dir / "deep.vtu"), "nest deeper than"));
+
+  write_text(dir / "deep_piece.vtu",
+             deeply_nested("<VTKFile type=\"UnstructuredGrid\">", "</VTKFile>\n", depth));
+  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="0.1">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source="deep_piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+  const std::string piece_error = read_error(dir / "whole.pvtu");
+  EXPECT_TRUE(contains(piece_error, "deep_piece.vtu")) << piece_error;
+  EXPECT_TRUE(contains(piece_error, "nest deeper than")) << piece_error;
+
+  write_text(dir / "deep.pvd", deeply_nested("<VTKFile type=\"Collection\"><Collection>",
+                                             "</Collection></VTKFile>\n", depth));
+  std::vector<SeriesEntry> series;
+  std::string error;
+  EXPECT_FALSE(read_pvd(dir / "deep.pvd", series, error));
+  EXPECT_TRUE(contains(error, "nest deeper than")) << error;
+}
+
+// A .pvtu summary whose array types or component counts differ from its pieces' (found by the
+// .pvtu fuzzer) made VTK's parallel reader write through a null pointer or past its buffers.
+// The pieces are read as they are and appended, whatever the summary says of their types.
+TEST(VtkMalformed, ASummaryThatMisdescribesItsPiecesReadsThePieces) {
+  ScratchDir dir;
+  write_text(dir / "piece.vtu", vtu_text("0 1 2 3", "4", "10", 1));
+  const std::pair<const char*, const char*> summaries[] = {
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>", "<PDataArray type=\"Float64\"/>"},
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>",
+       "<PDataArray type=\"Float64\" NumberOfComponents=\"2\"/>"},
+      {"<PDataArray type=\"Float64\" Name=\"f\"/>",
+       "<PDataArray type=\"Float32\" NumberOfComponents=\"3\"/>"},
+      {"<PDataArray type=\"Int8\" Name=\"f\"/>",
+       "<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>"},
+  };
+  for (const auto& [point_data, points] : summaries) {
+    write_text(dir / "whole.pvtu", std::string(R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPointData>)") + point_data + "</PPointData>\n    <PPoints>" +
+                                       points +
+                                       R"(</PPoints>
+    <Piece Source="piece.vtu"/>
+    <Piece Source="piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+    TetGrid out;
+    std::string error;
+    ASSERT_TRUE(read_grid(dir / "whole.pvtu", out, error)) << point_data << points << error;
+    EXPECT_EQ(out.points, (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1,
+                                               0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}));
+    EXPECT_EQ(out.tets, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+    EXPECT_EQ(out.point_fields.at("f"), (std::vector<double>{0, 1, 2, 3, 0, 1, 2, 3}));
+  }
+}
+
+TEST(VtkMalformed, ASummaryNamingAnArrayAPieceLacksIsAnError) {
+  ScratchDir dir;
+  write_text(dir / "piece.vtu", vtu_text("0 1 2 3", "4", "10", 1));
+  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPointData><PDataArray type="Float64" Name="g"/></PPointData>
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source="piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+  const std::string error = read_error(dir / "whole.pvtu");
+  EXPECT_TRUE(contains(error, "piece.vtu': has no scalar point array 'g'")) << error;
+  write_text(dir / "empty.pvtu", "<VTKFile><PUnstructuredGrid/></VTKFile>");
+  EXPECT_TRUE(contains(read_error(dir / "empty.pvtu"), "lists no Piece"));
+}
+
+// The depth scan counts elements, not text that looks like them, and stops at raw data.
+TEST(VtkMalformed, DepthScanSkipsCommentsQuotesAndRawData) {
+  ScratchDir dir;
+  std::string fine = "<?xml version=\"1.0\"?>\n<!-- <a><a><a> -->\n<r attr=\"<a>\">";
+  for (int k = 0; k < kMaxXmlDepth - 1; ++k) fine += "<a><b/>";
+  fine += "<![CDATA[<a><a>]]>";
+  for (int k = 0; k < kMaxXmlDepth - 1; ++k) fine += "</a>";
+  fine += "</r>";
+  write_text(dir / "fine.xml", fine);
+  EXPECT_EQ(xml_depth_problem(dir / "fine.xml"), "");
+
+  std::string raw = "<VTKFile><AppendedData encoding=\"raw\">_";
+  for (int k = 0; k < 2 * kMaxXmlDepth; ++k) raw += "<a>";
+  write_text(dir / "raw.vtu", raw);
+  EXPECT_EQ(xml_depth_problem(dir / "raw.vtu"), "");
+
+  std::string deep = "<r>";
+  for (int k = 0; k < kMaxXmlDepth; ++k) deep += "<a>";
+  write_text(dir / "deep.xml", deep);
+  EXPECT_TRUE(contains(xml_depth_problem(dir / "deep.xml"), "nest deeper than"));
+}
+
+}  // namespace
+}  // namespace tetray::vtkio
