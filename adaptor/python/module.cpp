@@ -4,6 +4,7 @@
 // becomes tetray.Error there too (errors.cpp), the GIL is released around the collective calls,
 // and the Python API carries the C++ API's report and will_render as they are.
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <string>
 
@@ -18,14 +19,16 @@ namespace tetray::python {
 namespace {
 
 void bind_status_code(py::module_& m) {
-  py::enum_<StatusCode>(m, "StatusCode", "The code of a failed call (tetray.Error.code).")
+  py::enum_<StatusCode>(m, "StatusCode",
+                        "The code of a call's status (tetray.Error.code for a failed one).")
       .value("ok", StatusCode::ok)
       .value("invalid_argument", StatusCode::invalid_argument)
       .value("config_error", StatusCode::config_error)
       .value("io_error", StatusCode::io_error)
       .value("mpi_error", StatusCode::mpi_error)
       .value("internal_error", StatusCode::internal_error)
-      .value("not_initialized", StatusCode::not_initialized);
+      .value("not_initialized", StatusCode::not_initialized)
+      .value("partial", StatusCode::partial);
 }
 
 void bind_changes(py::module_& m) {
@@ -51,6 +54,7 @@ void bind_report(py::module_& m) {
       .def_readonly("seconds_blocked", &ExecuteReport::seconds_blocked)
       .def_readonly("bvh_decision", &ExecuteReport::bvh_decision)
       .def_readonly("tets_skipped", &ExecuteReport::tets_skipped)
+      .def_readonly("skipped_scenes", &ExecuteReport::skipped_scenes)
       .def("__repr__", [](const ExecuteReport& r) {
         return "ExecuteReport(rendered=" + std::string(r.rendered ? "True" : "False") +
                ", scenes_rendered=" + std::to_string(r.scenes_rendered) +

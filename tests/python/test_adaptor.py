@@ -9,6 +9,7 @@ import tempfile
 import threading
 import time
 import unittest
+import warnings
 
 import numpy as np
 from mpi4py import MPI
@@ -214,8 +215,7 @@ class AdaptorTest(unittest.TestCase):
         out_of_range[0, 0] = len(s.points)
         nan = s.fields["f"].copy()
         nan[0] = np.nan
-        cases = [dict(tets=out_of_range), dict(fields={"g": s.fields["f"]}),
-                 dict(fields={"f": nan}), dict(fields={"f": s.fields["f"][:-1].copy()})]
+        cases = [dict(tets=out_of_range), dict(fields={"f": s.fields["f"][:-1].copy()})]
         with self.adaptor() as a:
             for bad in cases:
                 views = dict(points=s.points, tets=s.tets, fields=s.fields) | bad
@@ -229,6 +229,27 @@ class AdaptorTest(unittest.TestCase):
                 self.assertTrue(error.message)
                 self.assertIn(error.message, str(error))
             self.assertTrue(a.execute(0, 0.0, s.points, s.tets, s.fields).rendered)
+        self.assert_square(self.image())
+
+    def test_a_scene_whose_field_is_unusable_is_skipped_with_a_warning(self):
+        s = self.scene
+        nan = s.fields["f"].copy()
+        nan[0] = np.nan
+        with self.adaptor() as a:
+            for fields in ({"g": s.fields["f"]}, {"f": nan}):
+                with self.subTest(fields=list(fields)), self.assertWarns(
+                        tetray.PartialWarning) as warned:
+                    report = a.execute(0, 0.0, s.points, s.tets, fields)
+                self.assertEqual(report.skipped_scenes, ["plane"])
+                self.assertEqual(report.scenes_rendered, 0)
+                self.assertIn("plane", str(warned.warning))
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", tetray.PartialWarning)
+                with self.assertRaises(tetray.PartialWarning):
+                    a.execute(0, 0.0, s.points, s.tets, {"g": s.fields["f"]})
+            report = a.execute(0, 0.0, s.points, s.tets, s.fields)
+            self.assertTrue(report.rendered)
+            self.assertEqual(report.skipped_scenes, [])
         self.assert_square(self.image())
 
     @unittest.skipIf(COMM.size < 2, "needs two ranks")

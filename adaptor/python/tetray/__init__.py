@@ -5,7 +5,7 @@ A solver creates one ``Adaptor`` per communicator (an mpi4py communicator) and c
 (README.md, section "Python").
 """
 
-from ._errors import Error
+from ._errors import Error, PartialWarning
 from ._tetray import Adaptor, Changes, ExecuteReport, StatusCode
 
-__all__ = ["Adaptor", "Changes", "Error", "ExecuteReport", "StatusCode"]
+__all__ = ["Adaptor", "Changes", "Error", "ExecuteReport", "PartialWarning", "StatusCode"]

@@ -1,4 +1,4 @@
-"""tetray.Error: a failed tetray call (a Status whose code is not ok)."""
+"""tetray.Error: a failed tetray call; tetray.PartialWarning: a call that skipped scenes."""
 
 
 class Error(RuntimeError):
@@ -13,3 +13,11 @@ class Error(RuntimeError):
         super().__init__(f"{code.name}: {message}")
         self.code = code
         self.message = message
+
+
+class PartialWarning(UserWarning):
+    """Warned for a call that completed but skipped some scenes (StatusCode.partial).
+
+    The message names each skipped scene and why (e.g. its field missing on a rank); the other
+    scenes rendered, and the call's ExecuteReport lists the skipped ones in ``skipped_scenes``.
+    """
