@@ -13,6 +13,7 @@
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "thread_budget.hpp"
 #include "tie_keys.hpp"
 
 namespace tetray {
@@ -40,7 +41,10 @@ std::uint64_t count_zeros(const std::vector<std::uint8_t>& keep) {
 }  // namespace
 
 Adaptor::Impl::Impl(Communicator comm, config::Config config)
-    : comm_(comm), config_(std::move(config)) {
+    : comm_(comm),
+      config_(std::move(config)),
+      threads_(config_.threads > 0 ? config_.threads : default_thread_count()),
+      arena_(threads_) {
   for (const config::Scene& s : config_.scenes) {
     SceneState state(s);
     const auto same_field = [&](const FieldVolume& v) { return v.field() == s.field; };
@@ -105,7 +109,7 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
     if (report != nullptr) fill_report(Status::success(), blocked.ms(), *report);
     return Status::success();
   }
-  const Status status = render_step(step, time, mesh, fields);
+  const Status status = arena_.execute([&] { return render_step(step, time, mesh, fields); });
   const double blocked_ms = blocked.ms();
   if (report != nullptr) fill_report(status, blocked_ms, *report);
   if (!status.failed() && is_writer() && !config_.output.quiet) {
@@ -174,7 +178,10 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
 
 void Adaptor::Impl::begin_step(std::int64_t step, double time, const MeshView& mesh) {
   for (SceneState& s : scenes_) {
-    if (s.due) s.record = StepRecord{.step = step, .time = time, .scene = s.config.name};
+    if (s.due) {
+      s.record =
+          StepRecord{.step = step, .time = time, .scene = s.config.name, .threads = threads_};
+    }
   }
   bvh_decision_ = "none";
   tets_skipped_ = 0;

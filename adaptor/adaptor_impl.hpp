@@ -3,6 +3,8 @@
 // writer rank (output.writer_rank).
 #pragma once
 
+#include <tbb/task_arena.h>
+
 #include <memory>
 #include <span>
 #include <vector>
@@ -111,6 +113,10 @@ class Adaptor::Impl {
   std::string bvh_decision_;
   std::uint64_t tets_skipped_ = 0;
 
+  // The renderer's threads: every parallel loop of a render step runs in this arena, so a rank
+  // uses config.threads or what its affinity mask and CPU quota allow (thread_budget.hpp).
+  int threads_ = 1;
+  tbb::task_arena arena_;
   std::unique_ptr<ImageWriter> writer_;  // on the writer rank only
   // A failure of this rank after the step's last agreement (compositing, handing the image to
   // the writer): reported at the next agreement, with the writer's errors, so that every rank

@@ -21,6 +21,7 @@ namespace tetray::config {
 // needs about 16 GB, and all images together at most that much again.
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr std::size_t kMaxScenes = 256;
+inline constexpr int kMaxThreads = 1024;  // the renderer's threads per rank
 inline constexpr std::int64_t kMaxTotalPixels = std::int64_t{kMaxImageSide} * kMaxImageSide;
 // A config is a few kB; a much larger text is a mistake (and its YAML tree alone costs memory).
 inline constexpr std::size_t kMaxConfigBytes = 1 << 22;
@@ -77,6 +78,7 @@ struct Config {
   std::vector<Scene> scenes;
   render::UpdatePolicy bvh{};
   render::NonFinitePolicy nonfinite = render::NonFinitePolicy::error;
+  int threads = 0;  // the renderer's threads on each rank; 0: default_thread_count()
 };
 
 }  // namespace tetray::config

@@ -323,13 +323,16 @@ void check_total_pixels(const YamlReader& r, const YAML::Node& node,
 
 Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source,
                   int rank_count) {
-  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite"});
+  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite", "threads"});
   Config config;
   config.source = source;
   if (root["output"]) config.output = parse_output(r, root["output"], rank_count);
   const Trigger default_trigger =
       root["trigger"] ? parse_trigger(r, root["trigger"], "trigger") : Trigger{};
   if (root["bvh"]) config.bvh = parse_bvh(r, root["bvh"]);
+  if (root["threads"]) {
+    config.threads = static_cast<int>(r.integer_in(root["threads"], "threads", 1, kMaxThreads));
+  }
   if (root["nonfinite"]) {
     config.nonfinite =
         r.choice(root["nonfinite"], "nonfinite", {"error", "skip_tets"}) == "skip_tets"

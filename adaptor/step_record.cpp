@@ -22,7 +22,7 @@ std::string time_text(double time) {
 std::string log_header() {
   return "step,time,scene,check_ms,ingest_ms,bvh_ms,bvh_update,color_ms,trace_ms,composite_ms,"
          "queue_wait_ms,encode_ms,write_ms,tets,kept_tets,skipped_tets,rays,hits,bvh_bytes,"
-         "peak_rss_bytes";
+         "peak_rss_bytes,threads";
 }
 
 std::string log_row(const StepRecord& r) {
@@ -32,7 +32,7 @@ std::string log_row(const StepRecord& r) {
          ms(r.encode_ms) + ',' + ms(r.write_ms) + ',' + std::to_string(r.tets) + ',' +
          std::to_string(r.kept_tets) + ',' + std::to_string(r.skipped_tets) + ',' +
          std::to_string(r.rays) + ',' + std::to_string(r.hits) + ',' + std::to_string(r.bvh_bytes) +
-         ',' + std::to_string(r.peak_rss_bytes);
+         ',' + std::to_string(r.peak_rss_bytes) + ',' + std::to_string(r.threads);
 }
 
 }  // namespace tetray

@@ -11,6 +11,7 @@ struct StepRecord {
   std::int64_t step = 0;
   double time = 0;
   std::string scene;
+  int threads = 0;                  // the renderer's threads on each rank
   double check_ms = 0;              // validation of indices and values
   double ingest_ms = 0;             // adaptor-side conversion (connectivity, tie keys, keep mask)
   double bvh_ms = 0;                // fused ingest + refit, or rebuild

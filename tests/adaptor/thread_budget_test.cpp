@@ -1,6 +1,7 @@
 // The renderer's default thread count: the affinity mask the process runs under, capped by its
-// cgroup's CPU quota. ctest runs the affinity test under `taskset` with the count it expects in
-// TETRAY_EXPECTED_THREADS; the quota parsing runs on cgroup files written here.
+// cgroup's CPU quota, and what the timing log says the adaptor used. ctest runs the affinity
+// tests under `taskset` with the count it expects in TETRAY_EXPECTED_THREADS; the quota parsing
+// runs on cgroup files written here.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "plane_scene.hpp"
 #include "support/scratch_dir.hpp"
 #include "thread_budget.hpp"
 
@@ -26,6 +28,32 @@ TEST(ThreadBudget, FollowsTheAffinityMaskItRunsUnder) {
   // A cgroup quota below the mask (none on the machines of this project's CI) lowers it.
   const std::optional<double> quota = cgroup_cpu_quota(own_cgroup_dir());
   EXPECT_EQ(default_thread_count(), quota && *quota < cpus ? std::max(1, int(*quota)) : cpus);
+}
+
+// The threads the adaptor rendered with, from its timing log.
+std::string logged_threads(const std::string& top_lines) {
+  const testing::ScratchDir dir;
+  Status status;
+  const std::string out = dir / "out";
+  auto adaptor =
+      Adaptor::create_from_yaml(MPI_COMM_WORLD, testing::plane_config(out, "", top_lines), status);
+  EXPECT_TRUE(adaptor) << status.message;
+  if (!adaptor) return {};
+  const testing::PlaneScene scene = testing::make_plane_scene(2);
+  EXPECT_TRUE(adaptor->execute(0, 0, scene.view(), scene.fields()).ok());
+  EXPECT_TRUE(adaptor->finalize().ok());
+  return testing::cell(testing::read_csv(out + "/tetray_log.csv"), 1, "threads");
+}
+
+TEST(ThreadBudget, TheAdaptorRendersWithTheDefaultAndLogsIt) {
+  const char* expected = std::getenv("TETRAY_EXPECTED_THREADS");
+  if (expected == nullptr)
+    GTEST_SKIP() << "ctest runs this under taskset (adaptor_thread_budget_taskset_*)";
+  EXPECT_EQ(logged_threads(""), std::to_string(default_thread_count()));
+}
+
+TEST(ThreadBudget, TheThreadsKeyOverridesTheDefault) {
+  EXPECT_EQ(logged_threads("threads: 3\n"), "3");
 }
 
 TEST(ThreadBudget, ReadsACgroupV2Quota) {
