@@ -17,17 +17,13 @@ namespace {
 
 using render::mix64;
 
-// The bits of a coordinate as every rank holds it (-0 and +0 alike).
-std::uint64_t coordinate_bits(double x) { return std::bit_cast<std::uint64_t>(x == 0 ? 0.0 : x); }
-
 template <typename T>
 std::uint64_t corner_hash(const T* xyz, std::size_t point_count, std::int64_t index) {
   if (index < 0 || static_cast<std::uint64_t>(index) >= point_count) {
     return mix64(static_cast<std::uint64_t>(index));
   }
-  std::uint64_t h = 0;
-  for (int a = 0; a < 3; ++a) h = mix64(h ^ coordinate_bits(xyz[3 * index + a]));
-  return h;
+  const T* p = &xyz[3 * index];
+  return render::position_hash(p[0], p[1], p[2]);
 }
 
 // The same key whatever the order of the tet's corners; never the background's kNoHit.

@@ -1,12 +1,12 @@
 // vtkUnstructuredGrid -> TetGrid: the conversion behind the VTK bridge, tetray-render and
-// tetray-replay. Only VTK_TETRA cells are accepted; everything is copied into plain arrays so
-// that the renderer never sees a VTK type.
+// tetray-replay. Tets, hexahedra, wedges, pyramids and quadratic tets and hexahedra are accepted
+// and split into tets (cell_split.hpp); everything is copied into plain arrays so that the
+// renderer never sees a VTK type.
 #include "tetray/vtk_bridge.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
-#include <vtkCellTypes.h>
 #include <vtkDataArray.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkIdTypeArray.h>
@@ -19,26 +19,70 @@
 
 #include <algorithm>
 
+#include "cell_split.hpp"
+#include "render/core/hash.hpp"
+
 namespace tetray::vtkio {
 namespace {
 
-// Empty when every cell is a tet; otherwise names the first cell that is not. A file may
-// declare fewer cell types than cells: those cells have no type.
-std::string first_non_tet(vtkUnstructuredGrid* grid) {
-  const vtkIdType cell_count = grid->GetNumberOfCells();
+// The cells as VTK stores them: cell c has type types[c] and the point ids
+// connectivity[offsets[c], offsets[c + 1]).
+struct VtkCells {
+  std::vector<std::uint8_t> types;
+  std::vector<std::int64_t> offsets, connectivity;
+};
+
+// A file may declare fewer cell types than cells, or offsets that do not span the connectivity
+// from its start to its end: such cells are refused (a cell would borrow its neighbour's ids).
+template <typename Ids>
+std::string copy_ids(const Ids* offsets, vtkIdType cells, const Ids* ids, vtkIdType id_count,
+                     VtkCells& out) {
+  if (offsets[0] != 0 || offsets[cells] != id_count) {
+    return "the cell offsets span [" + std::to_string(offsets[0]) + ", " +
+           std::to_string(offsets[cells]) + ") of a connectivity of " + std::to_string(id_count) +
+           " point ids";
+  }
+  out.offsets.assign(offsets, offsets + cells + 1);
+  out.connectivity.assign(ids, ids + id_count);
+  return {};
+}
+
+std::string copy_cells(vtkUnstructuredGrid* grid, VtkCells& out) {
+  vtkCellArray* cells = grid->GetCells();
+  const vtkIdType count = cells ? cells->GetNumberOfCells() : 0;
+  if (count == 0) return {};
   vtkUnsignedCharArray* types = grid->GetCellTypesArray();
   const vtkIdType typed = types ? types->GetNumberOfTuples() : 0;
-  if (typed < cell_count) {
+  if (typed < count) {
     return "cell " + std::to_string(typed) + " has no cell type (" + std::to_string(typed) +
-           " types for " + std::to_string(cell_count) + " cells)";
+           " types for " + std::to_string(count) + " cells)";
   }
-  for (vtkIdType cell = 0; cell < cell_count; ++cell) {
-    const int type = types->GetValue(cell);
-    if (type == VTK_TETRA) continue;
-    const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
-    return "cell " + std::to_string(cell) + " is a " + (name ? name : "cell of unknown type") +
-           " (VTK cell type " + std::to_string(type) + "); tetray renders only VTK_TETRA (" +
-           std::to_string(VTK_TETRA) + ") cells";
+  out.types.assign(types->GetPointer(0), types->GetPointer(0) + count);
+  if (cells->IsStorage64Bit()) {
+    return copy_ids(cells->GetOffsetsArray64()->GetPointer(0), count,
+                    cells->GetConnectivityArray64()->GetPointer(0),
+                    cells->GetNumberOfConnectivityIds(), out);
+  }
+  return copy_ids(cells->GetOffsetsArray32()->GetPointer(0), count,
+                  cells->GetConnectivityArray32()->GetPointer(0),
+                  cells->GetNumberOfConnectivityIds(), out);
+}
+
+// The cells as tets (cell_split.hpp), with their ghost flags; the order of the points is that of
+// their positions, so that every rank and file splits a shared face alike.
+std::string split_into_tets(const VtkCells& cells, TetGrid& grid) {
+  std::vector<std::uint64_t> keys(grid.points.size() / 3);
+  for (std::size_t p = 0; p < keys.size(); ++p) {
+    keys[p] =
+        render::position_hash(grid.points[3 * p], grid.points[3 * p + 1], grid.points[3 * p + 2]);
+  }
+  SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys);
+  if (!split.error.empty()) return split.error;
+  grid.tets = std::move(split.tets);
+  if (!grid.ghost.empty()) {
+    std::vector<std::uint8_t> ghost(split.tet_cell.size());
+    for (std::size_t t = 0; t < ghost.size(); ++t) ghost[t] = grid.ghost[split.tet_cell[t]];
+    grid.ghost = std::move(ghost);
   }
   return {};
 }
@@ -50,41 +94,6 @@ std::vector<double> copy_points(vtkUnstructuredGrid* grid) {
   std::vector<double> xyz(3 * static_cast<std::size_t>(count));
   for (vtkIdType p = 0; p < count; ++p) points->GetPoint(p, &xyz[3 * static_cast<std::size_t>(p)]);
   return xyz;
-}
-
-// The 4 ids of every tet. The type array says "tet" but only the offsets say how many ids a
-// cell has: a file whose offsets do not step by 4 from 0 to the end of the connectivity is
-// refused (a cell with 3 ids would otherwise borrow its neighbour's).
-template <typename Ids>
-std::string copy_tet_ids(const Ids* offsets, vtkIdType cells, const Ids* ids, vtkIdType id_count,
-                         std::vector<std::int64_t>& tets) {
-  if (offsets[0] != 0 || offsets[cells] != id_count) {
-    return "the cell offsets span [" + std::to_string(offsets[0]) + ", " +
-           std::to_string(offsets[cells]) + ") of a connectivity of " + std::to_string(id_count) +
-           " point ids";
-  }
-  for (vtkIdType cell = 0; cell < cells; ++cell) {
-    if (offsets[cell + 1] - offsets[cell] != 4) {
-      return "cell " + std::to_string(cell) + " is a tet with " +
-             std::to_string(offsets[cell + 1] - offsets[cell]) + " point ids (a tet has 4)";
-    }
-  }
-  tets.assign(ids, ids + id_count);
-  return {};
-}
-
-std::string copy_tets(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& tets) {
-  vtkCellArray* cells = grid->GetCells();
-  if (!cells || cells->GetNumberOfCells() == 0) return {};
-  const vtkIdType count = cells->GetNumberOfCells();
-  if (cells->IsStorage64Bit()) {
-    return copy_tet_ids(cells->GetOffsetsArray64()->GetPointer(0), count,
-                        cells->GetConnectivityArray64()->GetPointer(0),
-                        cells->GetNumberOfConnectivityIds(), tets);
-  }
-  return copy_tet_ids(cells->GetOffsetsArray32()->GetPointer(0), count,
-                      cells->GetConnectivityArray32()->GetPointer(0),
-                      cells->GetNumberOfConnectivityIds(), tets);
 }
 
 std::vector<std::uint8_t> copy_ghosts(vtkUnstructuredGrid* grid) {
@@ -115,12 +124,11 @@ std::map<std::string, std::vector<double>> copy_point_fields(vtkUnstructuredGrid
 }
 
 // Empty when the ghost flags and every field have one value per cell and per point.
-std::string size_mismatch(const TetGrid& grid) {
-  const std::size_t tets = grid.tets.size() / 4;
+std::string size_mismatch(const TetGrid& grid, std::size_t cells) {
   const std::size_t points = grid.points.size() / 3;
-  if (!grid.ghost.empty() && grid.ghost.size() != tets) {
+  if (!grid.ghost.empty() && grid.ghost.size() != cells) {
     return "cell array vtkGhostType has " + std::to_string(grid.ghost.size()) + " values for " +
-           std::to_string(tets) + " cells";
+           std::to_string(cells) + " cells";
   }
   for (const auto& [name, values] : grid.point_fields) {
     if (values.size() != points) {
@@ -139,14 +147,14 @@ bool from_vtk(vtkUnstructuredGrid* grid, TetGrid& out, std::string& error) {
     error = "no grid (null vtkUnstructuredGrid)";
     return false;
   }
-  error = first_non_tet(grid);
-  if (!error.empty()) return false;
-  error = copy_tets(grid, out.tets);
+  VtkCells cells;
+  error = copy_cells(grid, cells);
   if (!error.empty()) return false;
   out.points = copy_points(grid);
   out.ghost = copy_ghosts(grid);
   out.point_fields = copy_point_fields(grid);
-  error = size_mismatch(out);
+  error = size_mismatch(out, cells.types.size());
+  if (error.empty()) error = split_into_tets(cells, out);
   return error.empty();
 }
 

@@ -98,8 +98,8 @@ TEST(VtkGrid, ReadsPiecesOfAParallelFile) {
   expect_same_grid(expected, read);
 }
 
-// Two tets and a hexahedron (cell 1) in between.
-vtkNew<vtkUnstructuredGrid> grid_with_a_hexahedron() {
+// Two tets and, in between, cell 1 of `type`: the unit cube as a hexahedron, or a triangle.
+vtkNew<vtkUnstructuredGrid> grid_with_cell_1(int type) {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> points;
   for (int k = 0; k < 8; ++k) points->InsertNextPoint(k & 1, (k >> 1) & 1, (k >> 2) & 1);
@@ -107,28 +107,65 @@ vtkNew<vtkUnstructuredGrid> grid_with_a_hexahedron() {
   const vtkIdType tet[4] = {0, 1, 2, 4};
   const vtkIdType hex[8] = {0, 1, 3, 2, 4, 5, 7, 6};
   grid->InsertNextCell(VTK_TETRA, 4, tet);
-  grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+  grid->InsertNextCell(type, type == VTK_HEXAHEDRON ? 8 : 3, hex);
   grid->InsertNextCell(VTK_TETRA, 4, tet);
   return grid;
 }
 
-TEST(VtkGrid, NonTetCellIsAnErrorNamingTypeAndCell) {
-  vtkNew<vtkUnstructuredGrid> grid = grid_with_a_hexahedron();
-  TetGrid out;
-  std::string error;
-  EXPECT_FALSE(from_vtk(grid, out, error));
-  EXPECT_TRUE(contains(error, "cell 1 ")) << error;
-  EXPECT_TRUE(contains(error, "vtkHexahedron")) << error;
-  EXPECT_TRUE(contains(error, "VTK_TETRA")) << error;
+double tet_volume(const TetGrid& grid, std::size_t t) {
+  double e[3][3];
+  const double* a = &grid.points[3 * grid.tets[4 * t]];
+  for (int k = 0; k < 3; ++k) {
+    const double* p = &grid.points[3 * grid.tets[4 * t + k + 1]];
+    for (int c = 0; c < 3; ++c) e[k][c] = p[c] - a[c];
+  }
+  return std::abs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                  e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                  e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+         6;
+}
 
+// The cube becomes six tets that fill it, between the two tets as they were.
+TEST(VtkGrid, AHexahedronIsSplitIntoTetsThatFillIt) {
+  vtkNew<vtkUnstructuredGrid> grid = grid_with_cell_1(VTK_HEXAHEDRON);
   ScratchDir dir;
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputData(grid);
   writer->SetFileName((dir / "hex.vtu").c_str());
   ASSERT_EQ(writer->Write(), 1);
-  EXPECT_FALSE(read_grid(dir / "hex.vtu", out, error));
-  EXPECT_TRUE(contains(error, dir / "hex.vtu")) << error;
-  EXPECT_TRUE(contains(error, "vtkHexahedron")) << error;
+  for (const bool from_file : {false, true}) {
+    TetGrid out;
+    std::string error;
+    ASSERT_TRUE(from_file ? read_grid(dir / "hex.vtu", out, error) : from_vtk(grid, out, error))
+        << error;
+    ASSERT_EQ(out.tets.size(), 4u * 8);
+    const std::vector<std::int64_t> tet = {0, 1, 2, 4};
+    EXPECT_TRUE(std::equal(tet.begin(), tet.end(), out.tets.begin()));
+    EXPECT_TRUE(std::equal(tet.begin(), tet.end(), out.tets.end() - 4));
+    double cube = 0;
+    for (std::size_t t = 1; t < 7; ++t) {
+      EXPECT_GT(tet_volume(out, t), 0.1) << "tet " << t;
+      cube += tet_volume(out, t);
+    }
+    EXPECT_NEAR(cube, 1.0, 1e-12);
+  }
+}
+
+TEST(VtkGrid, ACellTetrayDoesNotSplitIsAnErrorNamingTypeAndCell) {
+  vtkNew<vtkUnstructuredGrid> grid = grid_with_cell_1(VTK_TRIANGLE);
+  TetGrid out;
+  std::string error;
+  EXPECT_FALSE(from_vtk(grid, out, error));
+  EXPECT_TRUE(contains(error, "cell 1 (VTK cell type 5) is not a cell tetray renders")) << error;
+
+  ScratchDir dir;
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(grid);
+  writer->SetFileName((dir / "triangle.vtu").c_str());
+  ASSERT_EQ(writer->Write(), 1);
+  EXPECT_FALSE(read_grid(dir / "triangle.vtu", out, error));
+  EXPECT_TRUE(contains(error, dir / "triangle.vtu")) << error;
+  EXPECT_TRUE(contains(error, "VTK cell type 5")) << error;
 }
 
 TEST(VtkGrid, KeepsOnlyScalarPointArrays) {

@@ -85,15 +85,15 @@ TEST(VtkMalformed, ATetCellWithThreeIdsIsRefused) {
   ScratchDir dir;
   write_text(dir / "three.vtu", vtu_text("0 1 2", "3", "10", 1));
   write_text(dir / "three_then_four.vtu", vtu_text("0 1 2 0 1 2 3", "3 7", "10 10", 2));
-  EXPECT_TRUE(contains(read_error(dir / "three.vtu"), "cell 0 is a tet with 3 point ids"));
+  EXPECT_TRUE(contains(read_error(dir / "three.vtu"), "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
   EXPECT_TRUE(
-      contains(read_error(dir / "three_then_four.vtu"), "cell 0 is a tet with 3 point ids"));
+      contains(read_error(dir / "three_then_four.vtu"), "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
 }
 
 TEST(VtkMalformed, ATetCellWithFiveIdsIsRefused) {
   ScratchDir dir;
   write_text(dir / "five.vtu", vtu_text("0 1 2 3 0 1 2 3", "5 8", "10 10", 2));
-  EXPECT_TRUE(contains(read_error(dir / "five.vtu"), "cell 0 is a tet with 5 point ids"));
+  EXPECT_TRUE(contains(read_error(dir / "five.vtu"), "cell 0 (VTK cell type 10) has 5 nodes, not 4"));
 }
 
 // The bridge gets grids from solvers too: a cell array whose cells do not hold 4 ids each is
@@ -112,7 +112,7 @@ TEST(VtkMalformed, BridgeRefusesTetsOfTheWrongSize) {
   TetGrid out;
   std::string error;
   EXPECT_FALSE(from_vtk(grid, out, error));
-  EXPECT_TRUE(contains(error, "cell 0 is a tet with 3 point ids")) << error;
+  EXPECT_TRUE(contains(error, "cell 0 (VTK cell type 10) has 3 nodes, not 4")) << error;
 }
 
 TEST(VtkMalformed, BridgeRefusesCellsWithoutATypeArray) {
