@@ -8,18 +8,10 @@
 #include <unistd.h>
 
 #include "ball_image.h"
+#include "support/c_check.h"
 #include "tetray/adaptor.h"
 
 enum { kCells = 16, kSide = 64 };
-
-static int failures = 0;
-
-static void check(int ok, const char* what) {
-  if (!ok) {
-    fprintf(stderr, "FAILED: %s (last error: %s)\n", what, tetray_last_error());
-    ++failures;
-  }
-}
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);

@@ -8,16 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "support/c_check.h"
 #include "tetray/adaptor.h"
-
-static int failures = 0;
-
-static void check(int ok, const char* what) {
-  if (!ok) {
-    fprintf(stderr, "FAILED: %s (last error: %s)\n", what, tetray_last_error());
-    ++failures;
-  }
-}
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);

@@ -4,12 +4,7 @@
 # Makefile with pkg-config (consumers/make). Each must render its image. Also checks what
 # libtetray.so exports: the public API and nothing else.
 # cmake -P with BUILD_DIR, SOURCE_DIR (tests/adaptor/consumers), OUTSIDE_DIR, WORK_DIR.
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run_command.cmake)
 
 function(expect_image consumer_dir program)
   run(${consumer_dir}/${program} ${consumer_dir}/out)
