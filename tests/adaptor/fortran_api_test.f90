@@ -5,6 +5,7 @@ program fortran_api_test
   use, intrinsic :: iso_c_binding
   use mpi
   use tetray
+  use tetray_test_check
   implicit none
   type(c_ptr) :: handle, bad
   real(c_double), target :: xyz(12) = [0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0]
@@ -13,10 +14,9 @@ program fortran_api_test
   type(tetray_report) :: report
   integer(c_int) :: will
   character(len=:), allocatable :: skipped
-  integer :: ierr, failures
+  integer :: ierr
   character(len=*), parameter :: dir = "fortran_api_test_out"
 
-  failures = 0
   call mpi_init(ierr)
   call check(tetray_create_from_yaml(MPI_COMM_WORLD, &
       "output: {directory: " // dir // ", formats: [png], quiet: true, writer_queue_depth: 0}" // &
@@ -54,16 +54,5 @@ program fortran_api_test
   call mpi_finalize(ierr)
   if (failures > 0) stop 1
   print *, "fortran_api_test: all checks passed"
-
-contains
-
-  subroutine check(ok, what)
-    logical, intent(in) :: ok
-    character(len=*), intent(in) :: what
-    if (.not. ok) then
-      print *, "FAILED: ", what, " (", tetray_error_message(), ")"
-      failures = failures + 1
-    end if
-  end subroutine
 
 end program

@@ -7,6 +7,7 @@ program fortran_ball_test
   use, intrinsic :: iso_c_binding
   use mpi
   use tetray
+  use tetray_test_check
   implicit none
 
   interface
@@ -43,9 +44,8 @@ program fortran_ball_test
   integer(c_int64_t), allocatable, target :: tets(:)
   integer(c_int64_t) :: points, tet_count, covered, fewest, most
   type(c_ptr) :: handle
-  integer :: ierr, failures
+  integer :: ierr
 
-  failures = 0
   call mpi_init(ierr)
   call check(tetray_create_from_yaml(MPI_COMM_WORLD, &
       "output: {directory: " // dir // ", formats: [png], quiet: true, writer_queue_depth: 0}" // &
@@ -73,16 +73,5 @@ program fortran_ball_test
   call execute_command_line("rm -rf " // dir)
   call mpi_finalize(ierr)
   if (failures > 0) stop 1
-
-contains
-
-  subroutine check(ok, what)
-    logical, intent(in) :: ok
-    character(len=*), intent(in) :: what
-    if (.not. ok) then
-      print *, "FAILED: ", what, " (", tetray_error_message(), ")"
-      failures = failures + 1
-    end if
-  end subroutine
 
 end program
