@@ -1,8 +1,9 @@
 // Malformed VTK files and grids that once crashed the readers or were read wrong: a tet whose
 // cell has fewer than 4 point ids (it borrowed its neighbour's, a heap over-read at the end),
-// cells with no cell type, cells on a grid with no points, and XML nested so deep that VTK's
-// recursive element tree overflows the stack (.vtu, a .pvtu's piece, a .pvd series). Each must
-// be refused with a message naming the file and the cause.
+// cells with no cell type, cells on a grid with no points, XML nested so deep that VTK's
+// recursive element tree overflows the stack (.vtu, a .pvtu's piece, a .pvd series), and headers
+// that announce sizes the file cannot hold (VTK loops over or allocates them before it reads a
+// value). Each must be refused with a message naming the file and the cause.
 #include <gtest/gtest.h>
 #include <vtkCellArray.h>
 #include <vtkCellType.h>
@@ -12,13 +13,14 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "support/scratch_dir.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
-#include "tools/vtk_io/xml_depth.hpp"
+#include "tools/vtk_io/xml_header.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -39,7 +41,7 @@ const std::string kFieldF =
 // A one-piece ASCII .vtu with the unit tet's points (or `points_xml`) and the given cells; with
 // 4 points also the field f.
 std::string vtu_text(const std::string& connectivity, const std::string& offsets,
-                     const std::string& types, int cells, int points = 4,
+                     const std::string& types, int cells, std::int64_t points = 4,
                      const std::string& points_xml =
                          "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
                          "format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>") {
@@ -85,15 +87,17 @@ TEST(VtkMalformed, ATetCellWithThreeIdsIsRefused) {
   ScratchDir dir;
   write_text(dir / "three.vtu", vtu_text("0 1 2", "3", "10", 1));
   write_text(dir / "three_then_four.vtu", vtu_text("0 1 2 0 1 2 3", "3 7", "10 10", 2));
-  EXPECT_TRUE(contains(read_error(dir / "three.vtu"), "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
   EXPECT_TRUE(
-      contains(read_error(dir / "three_then_four.vtu"), "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
+      contains(read_error(dir / "three.vtu"), "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
+  EXPECT_TRUE(contains(read_error(dir / "three_then_four.vtu"),
+                       "cell 0 (VTK cell type 10) has 3 nodes, not 4"));
 }
 
 TEST(VtkMalformed, ATetCellWithFiveIdsIsRefused) {
   ScratchDir dir;
   write_text(dir / "five.vtu", vtu_text("0 1 2 3 0 1 2 3", "5 8", "10 10", 2));
-  EXPECT_TRUE(contains(read_error(dir / "five.vtu"), "cell 0 (VTK cell type 10) has 5 nodes, not 4"));
+  EXPECT_TRUE(
+      contains(read_error(dir / "five.vtu"), "cell 0 (VTK cell type 10) has 5 nodes, not 4"));
 }
 
 // The bridge gets grids from solvers too: a cell array whose cells do not hold 4 ids each is
@@ -237,17 +241,50 @@ TEST(VtkMalformed, DepthScanSkipsCommentsQuotesAndRawData) {
   for (int k = 0; k < kMaxXmlDepth - 1; ++k) fine += "</a>";
   fine += "</r>";
   write_text(dir / "fine.xml", fine);
-  EXPECT_EQ(xml_depth_problem(dir / "fine.xml"), "");
+  EXPECT_EQ(xml_header_problem(dir / "fine.xml"), "");
 
   std::string raw = "<VTKFile><AppendedData encoding=\"raw\">_";
   for (int k = 0; k < 2 * kMaxXmlDepth; ++k) raw += "<a>";
   write_text(dir / "raw.vtu", raw);
-  EXPECT_EQ(xml_depth_problem(dir / "raw.vtu"), "");
+  EXPECT_EQ(xml_header_problem(dir / "raw.vtu"), "");
 
   std::string deep = "<r>";
   for (int k = 0; k < kMaxXmlDepth; ++k) deep += "<a>";
   write_text(dir / "deep.xml", deep);
-  EXPECT_TRUE(contains(xml_depth_problem(dir / "deep.xml"), "nest deeper than"));
+  EXPECT_TRUE(contains(xml_header_problem(dir / "deep.xml"), "nest deeper than"));
+}
+
+// A header's sizes must fit the file: billions of components made VTK loop for minutes, billions
+// of points made it allocate tens of GB. The unit tet's own header passes; compressed data may
+// announce more values than it has bytes.
+TEST(VtkMalformed, HeaderSizesBeyondTheFileAreRefused) {
+  ScratchDir dir;
+  const std::string good = vtu_text("0 1 2 3", "4", "10", 1);
+  write_text(dir / "good.vtu", good);
+  EXPECT_EQ(xml_header_problem(dir / "good.vtu"), "");
+
+  std::string components = good;
+  components.replace(components.find("NumberOfComponents=\"3\""), 22,
+                     "NumberOfComponents = \"2000000000\"");
+  write_text(dir / "components.vtu", components);
+  EXPECT_TRUE(contains(read_error(dir / "components.vtu"),
+                       "<DataArray> declares NumberOfComponents=\"2000000000\", more than 1024"));
+
+  write_text(dir / "points.vtu", vtu_text("0 1 2 3", "4", "10", 1, 3000000000));
+  EXPECT_TRUE(contains(read_error(dir / "points.vtu"),
+                       "<Piece> declares NumberOfPoints=\"3000000000\", more values than"));
+  write_text(dir / "overflow.vtu", vtu_text("0 1 2 3", "4", "10", 1, 4) + "<a NumberOfTuples=\"" +
+                                       std::string(40, '9') + "\"/>");
+  EXPECT_TRUE(contains(read_error(dir / "overflow.vtu"), "NumberOfTuples"));
+
+  const std::string compressed =
+      "<VTKFile compressor=\"vtkZLibDataCompressor\"><Piece NumberOfPoints=\"5000\"/></VTKFile>";
+  write_text(dir / "compressed.vtu", compressed);
+  EXPECT_EQ(xml_header_problem(dir / "compressed.vtu"), "");
+  std::string plain = compressed;
+  plain.replace(plain.find("compressor"), 10, "compressee");
+  write_text(dir / "plain.vtu", plain);
+  EXPECT_TRUE(contains(xml_header_problem(dir / "plain.vtu"), "NumberOfPoints=\"5000\""));
 }
 
 }  // namespace

@@ -9,8 +9,8 @@
 
 namespace tetray::vtkio {
 
-// One .vtu through VTK's reader and the VTK bridge (cell types, sizes), after the XML nesting
-// check (xml_depth.hpp).
+// One .vtu through VTK's reader and the VTK bridge (cell types, sizes), after the XML header
+// check (xml_header.hpp).
 std::string read_vtu(const std::string& path, TetGrid& out);
 
 // A .pvtu as its pieces appended in order (pvtu.cpp).

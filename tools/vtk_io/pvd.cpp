@@ -11,7 +11,7 @@
 
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/vtk_message_capture.hpp"
-#include "tools/vtk_io/xml_depth.hpp"
+#include "tools/vtk_io/xml_header.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -61,7 +61,7 @@ bool read_pvd(const std::string& path, std::vector<SeriesEntry>& out, std::strin
     error = "'" + path + "': no such file";
     return false;
   }
-  if (std::string problem = xml_depth_problem(path); !problem.empty()) {
+  if (std::string problem = xml_header_problem(path); !problem.empty()) {
     error = "'" + path + "': " + problem;
     return false;
   }

@@ -14,7 +14,7 @@
 
 #include "tools/vtk_io/grid_readers.hpp"
 #include "tools/vtk_io/vtk_message_capture.hpp"
-#include "tools/vtk_io/xml_depth.hpp"
+#include "tools/vtk_io/xml_header.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -42,7 +42,7 @@ std::vector<std::string> array_names(vtkXMLDataElement* data) {
 }
 
 std::string read_summary(const std::string& path, Summary& summary) {
-  if (std::string problem = xml_depth_problem(path); !problem.empty()) return problem;
+  if (std::string problem = xml_header_problem(path); !problem.empty()) return problem;
   VtkMessageCapture capture;
   vtkNew<vtkXMLDataParser> parser;
   capture.watch(parser.Get());

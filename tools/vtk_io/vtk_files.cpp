@@ -23,7 +23,7 @@
 #include "tools/vtk_io/grid_readers.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/vtk_message_capture.hpp"
-#include "tools/vtk_io/xml_depth.hpp"
+#include "tools/vtk_io/xml_header.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -92,7 +92,7 @@ vtkSmartPointer<vtkUnstructuredGrid> to_vtk(const TetGrid& grid) {
 }  // namespace
 
 std::string read_vtu(const std::string& path, TetGrid& out) {
-  if (std::string problem = xml_depth_problem(path); !problem.empty()) return problem;
+  if (std::string problem = xml_header_problem(path); !problem.empty()) return problem;
   VtkMessageCapture capture;
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   capture.watch(reader.Get());

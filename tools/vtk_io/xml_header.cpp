@@ -1,0 +1,177 @@
+#include "tools/vtk_io/xml_header.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace tetray::vtkio {
+namespace {
+
+struct Tag {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  bool self_closing = false;
+};
+
+// Reads the XML markup character by character; only what the checks need is understood:
+// declarations, comments and CDATA are skipped, quoted attribute values may hold '>'.
+class MarkupScanner {
+ public:
+  explicit MarkupScanner(std::istream& in) : in_(in) {}
+
+  // The next start tag, and the nesting depth below it; nothing at the end of the markup.
+  std::optional<Tag> next_start_tag(int& depth) {
+    while (skip_to('<')) {
+      const int next = in_.peek();
+      if (next == '?' || next == '!') {
+        skip_special();
+      } else if (next == '/') {
+        skip_to('>');
+        --depth;
+      } else {
+        Tag tag = read_tag();
+        if (!tag.self_closing) ++depth;
+        return tag;
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  bool skip_to(char wanted) {
+    for (int c = in_.get(); c != EOF; c = in_.get()) {
+      if (c == wanted) return true;
+    }
+    return false;
+  }
+
+  // After '<' of "<!-- -->", "<![CDATA[ ]]>", "<!DOCTYPE >" or "<? ?>".
+  void skip_special() {
+    std::string opening;
+    for (int k = 0; k < 8 && in_.peek() != EOF; ++k) {
+      opening += static_cast<char>(in_.get());
+      if (opening == "!--" || opening == "![CDATA[") break;
+    }
+    const std::string_view end = opening == "!--" ? "-->" : opening == "![CDATA[" ? "]]>" : ">";
+    if (opening.back() == '>' && end == ">") return;
+    std::string tail;
+    for (int c = in_.get(); c != EOF; c = in_.get()) {
+      tail += static_cast<char>(c);
+      if (tail.size() > end.size()) tail.erase(0, 1);
+      if (tail == end) return;
+    }
+  }
+
+  // After '<' of a start tag: its name, its attributes, and whether it ends in "/>".
+  Tag read_tag() {
+    Tag tag;
+    int c = in_.get();
+    for (; c != EOF && c != '>' && c != '/' && !std::isspace(c); c = in_.get()) {
+      tag.name += static_cast<char>(c);
+    }
+    std::string word;
+    char quote = 0, last = static_cast<char>(c);
+    for (; c != EOF; c = in_.get()) {
+      if (quote) {
+        if (c == quote) {
+          quote = 0;
+        } else {
+          tag.attributes.back().second += static_cast<char>(c);
+        }
+      } else if (c == '"' || c == '\'') {
+        quote = static_cast<char>(c);
+        tag.attributes.emplace_back(std::exchange(word, {}), "");
+      } else if (c == '>') {
+        break;
+      } else if (!std::isspace(c) && c != '=' && c != '/') {
+        word += static_cast<char>(c);
+      }
+      if (!std::isspace(c)) last = static_cast<char>(c);
+    }
+    tag.self_closing = last == '/';
+    return tag;
+  }
+
+  std::istream& in_;
+};
+
+// The attributes that size what VTK allocates for an element.
+constexpr std::array<std::string_view, 7> kCountAttributes = {
+    "NumberOfPoints", "NumberOfCells",  "NumberOfTuples", "NumberOfVerts",
+    "NumberOfLines",  "NumberOfStrips", "NumberOfPolys"};
+
+bool is_count_attribute(std::string_view name) {
+  return std::find(kCountAttributes.begin(), kCountAttributes.end(), name) !=
+         kCountAttributes.end();
+}
+
+// The integer an attribute value starts with, as VTK reads it (leading blanks skipped); a number
+// beyond 64 bits counts as the largest. Nothing when it starts with no digit: VTK reports that.
+std::optional<std::int64_t> leading_integer(std::string_view text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) {
+    text.remove_prefix(1);
+  }
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  std::int64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range) return INT64_MAX;
+  if (error != std::errc()) return std::nullopt;
+  return value;
+}
+
+// What is wrong with one size attribute of a tag, or nothing.
+std::string size_problem(const Tag& tag, const std::string& name, const std::string& value,
+                         std::int64_t most_values) {
+  const std::optional<std::int64_t> number = leading_integer(value);
+  if (!number) return {};
+  if (name == "NumberOfComponents" && *number > kMaxComponents) {
+    return "<" + tag.name + "> declares NumberOfComponents=\"" + value + "\", more than " +
+           std::to_string(kMaxComponents);
+  }
+  if (is_count_attribute(name) && *number > most_values) {
+    return "<" + tag.name + "> declares " + name + "=\"" + value + "\", more values than the " +
+           "file's bytes can hold (at most " + std::to_string(most_values) + ")";
+  }
+  return {};
+}
+
+std::string header_problem(MarkupScanner& scanner, std::int64_t file_bytes) {
+  std::int64_t most_values = file_bytes;
+  int depth = 0;
+  while (std::optional<Tag> tag = scanner.next_start_tag(depth)) {
+    if (depth > kMaxXmlDepth) {
+      return "XML elements nest deeper than " + std::to_string(kMaxXmlDepth) +
+             " levels; this is no VTK file";
+    }
+    for (const auto& [name, value] : tag->attributes) {
+      if (name == "compressor" && !value.empty()) {
+        most_values = file_bytes * kMaxValuesPerCompressedByte;
+      }
+      if (std::string problem = size_problem(*tag, name, value, most_values); !problem.empty()) {
+        return problem;
+      }
+    }
+    if (tag->name == "AppendedData") break;
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string xml_header_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!in || ec) return {};  // the reader names a file it cannot open
+  MarkupScanner scanner(in);
+  return header_problem(scanner, static_cast<std::int64_t>(bytes));
+}
+
+}  // namespace tetray::vtkio
