@@ -146,17 +146,25 @@ void Adaptor::Impl::fill_report(const Status& status, double blocked_ms,
 Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView& mesh,
                                   std::span<const FieldView> fields) {
   // A failure this rank met since the last agreement is this step's outcome, on every rank.
+  // A mesh of cells is read as their tets from here on.
+  MeshView tet_mesh;
   Status status = guarded("validation", [&] {
-    begin_step(step, time, mesh);
-    Status pending = take_pending_error();
-    return pending.ok() ? validate(mesh, fields) : pending;
+    begin_step(step, time);
+    if (Status pending = take_pending_error(); !pending.ok()) return pending;
+    const render::Stopwatch split;
+    if (std::string e = cell_tets_.resolve(mesh, epochs_.topology, tet_mesh); !e.empty()) {
+      return invalid(e);
+    }
+    if (SceneState* first = first_due_scene()) first->record.ingest_ms += split.ms();
+    local_tets_ = tet_mesh.tets.count;
+    return validate(tet_mesh, fields);
   });
   status = agree(comm_, status, &ranges_, &skips_);
   if (!status.ok()) return status;
   drop_skipped_scenes();
   if (!ranges_.points.empty()) origin_ = 0.5 * (ranges_.points.lo() + ranges_.points.hi());
   ranges_.clear();
-  status = guarded("BVH update", [&] { return update_volumes(mesh, fields); });
+  status = guarded("BVH update", [&] { return update_volumes(tet_mesh, fields); });
   if (status.ok())
     status = guarded("bounds and color ranges", [&] { return global_inputs(fields); });
   status = agree(comm_, status, &ranges_);
@@ -176,7 +184,7 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   return skipped_status();
 }
 
-void Adaptor::Impl::begin_step(std::int64_t step, double time, const MeshView& mesh) {
+void Adaptor::Impl::begin_step(std::int64_t step, double time) {
   for (SceneState& s : scenes_) {
     if (s.due) {
       s.record =
@@ -185,7 +193,7 @@ void Adaptor::Impl::begin_step(std::int64_t step, double time, const MeshView& m
   }
   bvh_decision_ = "none";
   tets_skipped_ = 0;
-  local_tets_ = mesh.tets.count;
+  local_tets_ = 0;
   ranges_.clear();
   std::fill(skips_.begin(), skips_.end(), std::string());
 }

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "cell_tets.hpp"
 #include "collective.hpp"
 #include "config.hpp"
 #include "field_volume.hpp"
@@ -62,7 +63,7 @@ class Adaptor::Impl {
   // A fault of one scene's field skips that scene (on every rank) and the step goes on.
   Status render_step(std::int64_t step, double time, const MeshView& mesh,
                      std::span<const FieldView> fields);
-  void begin_step(std::int64_t step, double time, const MeshView& mesh);
+  void begin_step(std::int64_t step, double time);
   Status validate(const MeshView& mesh, std::span<const FieldView> fields);
   Status check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields);
   std::string convert_topology(const MeshView& mesh);
@@ -95,6 +96,7 @@ class Adaptor::Impl {
   ChangeEpochs epochs_{};
   StepRanges ranges_;
 
+  CellTets cell_tets_;  // the split of a mesh given as cells, kept until the topology changes
   // This step's connectivity as int64, and the int32 conversion and tie keys kept across steps
   // until the topology changes.
   std::span<const std::int64_t> tets_;

@@ -43,6 +43,12 @@ tetray::ScalarType scalar(int type) {
   return type == TETRAY_FLOAT32 ? tetray::ScalarType::float32 : tetray::ScalarType::float64;
 }
 
+bool valid_index(int type) { return type == TETRAY_INT32 || type == TETRAY_INT64; }
+
+tetray::IndexType index(int type) {
+  return type == TETRAY_INT32 ? tetray::IndexType::int32 : tetray::IndexType::int64;
+}
+
 template <typename Make>
 int create(Make&& make, tetray_adaptor** out) {
   if (out == nullptr) return fail(tetray::StatusCode::invalid_argument, "create: out is NULL");
@@ -103,7 +109,7 @@ int tetray_set_mesh(tetray_adaptor* a, const void* xyz, int xyz_type, int64_t po
     return fail(tetray::StatusCode::invalid_argument,
                 "tetray_set_mesh: scalar types must be TETRAY_FLOAT32 or TETRAY_FLOAT64");
   }
-  if (index_type != TETRAY_INT32 && index_type != TETRAY_INT64) {
+  if (!valid_index(index_type)) {
     return fail(tetray::StatusCode::invalid_argument,
                 "tetray_set_mesh: index_type must be TETRAY_INT32 or TETRAY_INT64");
   }
@@ -112,9 +118,26 @@ int tetray_set_mesh(tetray_adaptor* a, const void* xyz, int xyz_type, int64_t po
   }
   a->mesh.points = {xyz, scalar(xyz_type), static_cast<std::size_t>(point_count), displacement,
                     scalar(displacement_type)};
-  a->mesh.tets = {connectivity,
-                  index_type == TETRAY_INT32 ? tetray::IndexType::int32 : tetray::IndexType::int64,
-                  static_cast<std::size_t>(tet_count), ghost, global_ids};
+  a->mesh.tets = {connectivity, index(index_type), static_cast<std::size_t>(tet_count), ghost,
+                  global_ids};
+  a->mesh.cells = {};
+  return succeed();
+}
+
+int tetray_set_cells(tetray_adaptor* a, const uint8_t* types, const void* offsets,
+                     const void* connectivity, int index_type, int64_t cell_count,
+                     const uint8_t* ghost) {
+  if (a == nullptr) return no_handle("tetray_set_cells");
+  if (!valid_index(index_type)) {
+    return fail(tetray::StatusCode::invalid_argument,
+                "tetray_set_cells: index_type must be TETRAY_INT32 or TETRAY_INT64");
+  }
+  if (cell_count < 0) {
+    return fail(tetray::StatusCode::invalid_argument, "tetray_set_cells: negative count");
+  }
+  a->mesh.tets = {};
+  a->mesh.cells = {
+      types, offsets, connectivity, index(index_type), static_cast<std::size_t>(cell_count), ghost};
   return succeed();
 }
 

@@ -25,7 +25,8 @@ module tetray
     type(c_ptr) :: bvh_decision  ! read it with tetray_bvh_decision(report)
   end type
 
-  public :: tetray_create, tetray_create_from_yaml, tetray_set_mesh, tetray_set_field, &
+  public :: tetray_create, tetray_create_from_yaml, tetray_set_mesh, tetray_set_cells, &
+    tetray_set_field, &
     tetray_clear_fields, tetray_will_render, tetray_execute, tetray_get_report, &
     tetray_skipped_scene, tetray_bvh_decision, tetray_finalize, tetray_destroy, &
     tetray_error_message
@@ -53,6 +54,15 @@ module tetray
       type(c_ptr), value :: handle, xyz, displacement, connectivity, ghost, global_ids
       integer(c_int), value :: xyz_type, displacement_type, index_type
       integer(c_int64_t), value :: point_count, tet_count
+    end function
+
+    ! Cells instead of tets (VTK types and node order, 0-based), after tetray_set_mesh.
+    integer(c_int) function tetray_set_cells(handle, types, offsets, connectivity, index_type, &
+        cell_count, ghost) bind(c, name="tetray_set_cells")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: handle, types, offsets, connectivity, ghost
+      integer(c_int), value :: index_type
+      integer(c_int64_t), value :: cell_count
     end function
 
     integer(c_int) function c_set_field(handle, name, values, type, count) &

@@ -64,11 +64,12 @@ void bind_report(py::module_& m) {
 }
 
 ExecuteReport execute(PyAdaptor& a, std::int64_t step, double time, py::handle points,
-                      py::handle tets, py::handle fields, py::handle displacement, py::handle ghost,
-                      py::handle global_ids, const Changes& changes) {
+                      py::handle tets, py::handle fields, py::handle cells, py::handle displacement,
+                      py::handle ghost, py::handle global_ids, const Changes& changes) {
   return a.execute(step, time,
                    {.points = points,
                     .tets = tets,
+                    .cells = cells,
                     .fields = fields,
                     .displacement = displacement,
                     .ghost = ghost,
@@ -92,13 +93,17 @@ void bind_adaptor(py::module_& m) {
            "Reads and validates the YAML config file (str or os.PathLike).")
       .def_static("from_yaml", &PyAdaptor::from_yaml, "comm"_a, "yaml"_a,
                   "The same from the config's YAML text.")
-      .def("execute", &execute, "step"_a, "time"_a, "points"_a, "tets"_a, "fields"_a = py::none(),
-           py::kw_only(), "displacement"_a = py::none(), "ghost"_a = py::none(),
-           "global_ids"_a = py::none(), "changes"_a = Changes{},
+      .def("execute", &execute, "step"_a, "time"_a, "points"_a, "tets"_a = py::none(),
+           "fields"_a = py::none(), py::kw_only(), "cells"_a = py::none(),
+           "displacement"_a = py::none(), "ghost"_a = py::none(), "global_ids"_a = py::none(),
+           "changes"_a = Changes{},
            "One solver step: points (n, 3) float32/float64, tets (m, 4) int32/int64, fields a "
            "dict of name -> (n,) float32/float64, displacement (n, 3), ghost (m,) uint8 "
-           "vtkGhostType, global_ids (m,) int64. The arrays are read in place during the call "
-           "and must be C-contiguous. Returns an ExecuteReport; raises tetray.Error.")
+           "vtkGhostType, global_ids (m,) int64. Instead of tets, cells=(types, offsets, "
+           "connectivity) as VTK stores them: (c,) uint8 VTK cell types (10, 12, 13, 14, 24, 71, "
+           "72), (c + 1,) offsets and the connectivity, both int32 or int64 (ghost then per "
+           "cell). The arrays are read in place during the call and must be C-contiguous. "
+           "Returns an ExecuteReport; raises tetray.Error.")
       .def("will_render", &PyAdaptor::will_render, "step"_a, "time"_a,
            "Whether execute(step, time, ...) would render a scene (no MPI, no side effects).")
       .def(

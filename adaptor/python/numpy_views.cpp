@@ -100,7 +100,7 @@ PointsView read_points(const StepArguments& args) {
   return points;
 }
 
-// An optional per-tet array of dtype T, or null.
+// An optional per-tet (or per-cell) array of dtype T, or null.
 template <typename T>
 const T* per_tet(py::handle obj, const char* name, const char* dtype, py::ssize_t tets) {
   if (obj.is_none()) return nullptr;
@@ -123,6 +123,65 @@ TetsView read_tets(const StepArguments& args) {
   tets.ghost = per_tet<std::uint8_t>(args.ghost, "ghost", "uint8", count);
   tets.global_ids = per_tet<std::int64_t>(args.global_ids, "global_ids", "int64", count);
   return tets;
+}
+
+template <typename Index>
+std::int64_t last_value(const py::array& a) {
+  return static_cast<const Index*>(a.data())[a.shape(0) - 1];
+}
+
+// cells = (types, offsets, connectivity): (c,) uint8 VTK cell types, (c + 1,) offsets and the
+// connectivity they index, both int32 or both int64.
+CellsView read_cells(const StepArguments& args) {
+  if (!py::isinstance<py::tuple>(args.cells) || py::len(args.cells) != 3) {
+    throw py::type_error("cells: expected a tuple (types, offsets, connectivity), got " +
+                         type_name(args.cells));
+  }
+  const auto parts = py::reinterpret_borrow<py::tuple>(args.cells);
+  const py::array types = as_array(parts[0], "cells types");
+  const py::array offsets = as_array(parts[1], "cells offsets");
+  const py::array connectivity = as_array(parts[2], "cells connectivity");
+  require_dtype<std::uint8_t>(types, "cells types", "uint8");
+  require_shape(types, "cells types", 0, std::nullopt, "(c,)");
+  CellsView cells;
+  cells.type = index_type(offsets, "cells offsets");
+  if (index_type(connectivity, "cells connectivity") != cells.type) {
+    throw py::type_error("cells: offsets and connectivity must have the same dtype");
+  }
+  const py::ssize_t count = types.shape(0);
+  require_shape(offsets, "cells offsets", 0, count + 1,
+                "(c + 1,) with " + rows_text("c", count, "cells"));
+  require_shape(connectivity, "cells connectivity", 0, std::nullopt, "(k,)");
+  for (const py::array* a : {&types, &offsets, &connectivity}) require_in_place(*a, "cells");
+  const std::int64_t length = cells.type == IndexType::int64 ? last_value<std::int64_t>(offsets)
+                                                             : last_value<std::int32_t>(offsets);
+  if (length != connectivity.shape(0)) {
+    throw py::value_error("cells: offsets[-1] is " + std::to_string(length) +
+                          " but the connectivity has " + std::to_string(connectivity.shape(0)) +
+                          " entries");
+  }
+  cells.types = static_cast<const std::uint8_t*>(types.data());
+  cells.offsets = offsets.data();
+  cells.connectivity = connectivity.data();
+  cells.count = static_cast<std::size_t>(count);
+  cells.ghost = per_tet<std::uint8_t>(args.ghost, "ghost", "uint8", count);
+  return cells;
+}
+
+void read_mesh(const StepArguments& args, MeshView& mesh) {
+  mesh.points = read_points(args);
+  if (args.cells.is_none() == args.tets.is_none()) {
+    throw py::value_error("pass either tets or cells (not both, not neither)");
+  }
+  if (args.tets.is_none()) {
+    if (!args.global_ids.is_none()) {
+      throw py::value_error("global_ids: per-tet ids need tets; with cells ties resolve by "
+                            "position");
+    }
+    mesh.cells = read_cells(args);
+  } else {
+    mesh.tets = read_tets(args);
+  }
 }
 
 // The adaptor checks each field's length against the points where a scene uses it.
@@ -153,8 +212,7 @@ void read_fields(py::handle fields, StepViews& views) {
 
 StepViews read_step_views(const StepArguments& arguments) {
   StepViews views;
-  views.mesh.points = read_points(arguments);
-  views.mesh.tets = read_tets(arguments);
+  read_mesh(arguments, views.mesh);
   read_fields(arguments.fields, views);
   return views;
 }

@@ -16,11 +16,12 @@ namespace tetray::python {
 // The Python arguments of one execute call; None for the optional ones.
 struct StepArguments {
   pybind11::handle points;        // (n, 3) float32/float64
-  pybind11::handle tets;          // (m, 4) int32/int64
+  pybind11::handle tets;          // (m, 4) int32/int64, or None with cells
+  pybind11::handle cells;         // (types, offsets, connectivity) as CellsView, or None
   pybind11::handle fields;        // dict name -> (n,) float32/float64, or None
   pybind11::handle displacement;  // (n, 3) float32/float64
-  pybind11::handle ghost;         // (m,) uint8 vtkGhostType flags
-  pybind11::handle global_ids;    // (m,) int64
+  pybind11::handle ghost;         // (m,) uint8 vtkGhostType flags, per tet or per cell
+  pybind11::handle global_ids;    // (m,) int64, with tets only
 };
 
 // Views into the arguments' arrays. The field arrays are referenced here, so that a dict changed

@@ -4,9 +4,6 @@
 // a subset of the cells splits as in the whole mesh (as on another rank), and what tetray cannot
 // split is an error naming the cell. The 27-node hexahedron's node order is checked against VTK.
 #include <gtest/gtest.h>
-#include <vtkLagrangeHexahedron.h>
-#include <vtkNew.h>
-#include <vtkPoints.h>
 
 #include <algorithm>
 #include <array>
@@ -17,111 +14,15 @@
 #include <vector>
 
 #include "cell_split.hpp"
+#include "support/cell_meshes.hpp"
 
 namespace tetray {
 namespace {
 
-using Point = std::array<double, 3>;
-
-// A mesh of cells of one kind on the lattice [0, n]^3 (integer coordinates where a cell has
-// corners, halves at quadratic nodes and cell centres).
-struct CellMesh {
-  std::vector<Point> points;
-  std::vector<std::uint8_t> types;
-  std::vector<std::int64_t> offsets{0};
-  std::vector<std::int64_t> connectivity;
-  int n = 0;
-
-  std::int64_t point(Point p) {
-    const auto found = index.find(p);
-    if (found != index.end()) return found->second;
-    points.push_back(p);
-    return index[p] = static_cast<std::int64_t>(points.size() - 1);
-  }
-  void add(CellType type, const std::vector<std::int64_t>& nodes) {
-    types.push_back(static_cast<std::uint8_t>(type));
-    connectivity.insert(connectivity.end(), nodes.begin(), nodes.end());
-    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
-  }
-
- private:
-  std::map<Point, std::int64_t> index;
-};
-
-using CellMaker = void (*)(CellMesh&, Point);  // adds the cells of the unit cube at a corner
-
-std::array<std::int64_t, 8> cube_corners(CellMesh& m, Point o) {
-  std::array<std::int64_t, 8> c{};
-  const int dx[8] = {0, 1, 1, 0, 0, 1, 1, 0}, dy[8] = {0, 0, 1, 1, 0, 0, 1, 1},
-            dz[8] = {0, 0, 0, 0, 1, 1, 1, 1};
-  for (int k = 0; k < 8; ++k) c[k] = m.point({o[0] + dx[k], o[1] + dy[k], o[2] + dz[k]});
-  return c;
-}
-
-void hexahedra(CellMesh& m, Point o) {
-  const auto c = cube_corners(m, o);
-  m.add(CellType::hexahedron, {c.begin(), c.end()});
-}
-
-void wedges(CellMesh& m, Point o) {
-  const auto c = cube_corners(m, o);
-  m.add(CellType::wedge, {c[0], c[1], c[2], c[4], c[5], c[6]});
-  m.add(CellType::wedge, {c[0], c[2], c[3], c[4], c[6], c[7]});
-}
-
-// Six pyramids from the cube's centre to its faces.
-void pyramids(CellMesh& m, Point o) {
-  const auto c = cube_corners(m, o);
-  const std::int64_t centre = m.point({o[0] + 0.5, o[1] + 0.5, o[2] + 0.5});
-  const int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                           {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  for (const auto& f : faces) {
-    m.add(CellType::pyramid, {c[f[0]], c[f[1]], c[f[2]], c[f[3]], centre});
-  }
-}
-
-Point mid(const CellMesh& m, std::int64_t a, std::int64_t b) {
-  const Point& p = m.points[a];
-  const Point& q = m.points[b];
-  return {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2])};
-}
-
-// Six Kuhn tets of 10 nodes each (VTK order: corners, then edges 01, 12, 02, 03, 13, 23).
-void quadratic_tets(CellMesh& m, Point o) {
-  const auto c = cube_corners(m, o);
-  const int kuhn[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
-                          {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
-  const int edges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
-  for (int t = 0; t < 6; ++t) {
-    std::vector<std::int64_t> nodes;
-    for (int v : kuhn[t]) nodes.push_back(c[v]);
-    for (const auto& e : edges) nodes.push_back(m.point(mid(m, nodes[e[0]], nodes[e[1]])));
-    m.add(t % 2 ? CellType::quadratic_tetra : CellType::lagrange_tetrahedron, nodes);
-  }
-}
-
-// One 27-node Lagrange hexahedron, its nodes ordered by VTK's own vtkLagrangeHexahedron.
-void quadratic_hexahedra(CellMesh& m, Point o) {
-  vtkNew<vtkLagrangeHexahedron> cell;
-  cell->SetOrder(2, 2, 2);
-  std::vector<std::int64_t> nodes(27);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) {
-        nodes[cell->PointIndexFromIJK(i, j, k)] =
-            m.point({o[0] + 0.5 * i, o[1] + 0.5 * j, o[2] + 0.5 * k});
-      }
-  m.add(CellType::lagrange_hexahedron, nodes);
-}
-
-CellMesh lattice(int n, CellMaker make) {
-  CellMesh m;
-  m.n = n;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) make(m, {double(i), double(j), double(k)});
-  return m;
-}
+using testing::CellMesh;
+using testing::kCellKinds;
+using testing::lattice;
+using Point = testing::LatticePoint;
 
 std::vector<std::uint64_t> shuffled_keys(std::size_t count, unsigned seed) {
   std::vector<std::uint64_t> keys(count);
@@ -182,18 +83,8 @@ void expect_conforming_split(const CellMesh& m, const std::vector<std::uint64_t>
   }
 }
 
-struct Kind {
-  const char* name;
-  CellMaker make;
-};
-const Kind kKinds[] = {{"hexahedra", hexahedra},
-                       {"wedges", wedges},
-                       {"pyramids", pyramids},
-                       {"quadratic tets", quadratic_tets},
-                       {"quadratic hexahedra", quadratic_hexahedra}};
-
 TEST(CellSplit, FillsTheMeshAndConformsUnderAnyPointOrder) {
-  for (const Kind& kind : kKinds) {
+  for (const testing::CellKind& kind : kCellKinds) {
     const CellMesh m = lattice(3, kind.make);
     for (unsigned seed = 1; seed <= 8; ++seed) {
       expect_conforming_split(m, shuffled_keys(m.points.size(), seed), kind.name);
@@ -203,7 +94,7 @@ TEST(CellSplit, FillsTheMeshAndConformsUnderAnyPointOrder) {
 
 // A rank holding some of the cells splits each as the whole mesh does.
 TEST(CellSplit, ASubsetOfTheCellsSplitsAsInTheWholeMesh) {
-  for (const Kind& kind : kKinds) {
+  for (const testing::CellKind& kind : kCellKinds) {
     const CellMesh m = lattice(3, kind.make);
     const std::vector<std::uint64_t> keys = shuffled_keys(m.points.size(), 5);
     const SplitCells whole = split_cells(m.types, m.offsets, m.connectivity, keys);

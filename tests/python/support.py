@@ -37,6 +37,19 @@ def box_mesh(cells, lo=-1.0, hi=1.0):
     return points, tets
 
 
+def box_hexahedra(cells):
+    """The cubes of box_mesh(cells) as VTK hexahedra (type 12, VTK's node order): the cells tuple
+    (types (c,) uint8, offsets (c + 1,) int64, connectivity (8 c,) int64) of Adaptor.execute."""
+    i, j, k = (a.ravel() for a in np.meshgrid(*[np.arange(cells)] * 3, indexing="ij"))
+    corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
+               (0, 1, 1)]
+    nodes = [((k + dz) * (cells + 1) + j + dy) * (cells + 1) + i + dx for dx, dy, dz in corners]
+    connectivity = np.stack(nodes, axis=1).astype(np.int64).ravel()
+    count = cells ** 3
+    types = np.full(count, 12, dtype=np.uint8)
+    return types, np.arange(0, 8 * count + 1, 8, dtype=np.int64), connectivity
+
+
 def square_coverage(width, height, eye_z, plane_z, fov_deg, half_side=1.0, margin=1e-3):
     """For a camera at (0, 0, eye_z) looking at the origin with up +y and vertical field of view
     fov_deg (render/trace/camera.cpp: rays through pixel centers), and the square
@@ -55,9 +68,10 @@ def square_coverage(width, height, eye_z, plane_z, fov_deg, half_side=1.0, margi
 
 def read_png(path):
     """The PNG at `path` as a (height, width, 4) uint8 RGBA array."""
-    width, height, rows, _ = png.Reader(filename=str(path)).asRGBA8()
-    return np.array([np.frombuffer(bytes(r), dtype=np.uint8) for r in rows]).reshape(
-        height, width, 4)
+    with open(path, "rb") as file:
+        width, height, rows, _ = png.Reader(file=file).asRGBA8()
+        return np.array([np.frombuffer(bytes(r), dtype=np.uint8) for r in rows]).reshape(
+            height, width, 4)
 
 
 def run_on_every_rank():

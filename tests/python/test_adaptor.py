@@ -178,6 +178,53 @@ class AdaptorTest(unittest.TestCase):
         self.assertEqual(moved.bvh_decision, "refit")
         self.assertEqual(values.bvh_decision, "field_refit")
 
+    def test_hexahedra_as_cells_show_the_plane(self):
+        """The box's cubes as hexahedra (split by the adaptor) show the plane f = z = ISO exactly
+        (f is linear), on any rank count; ghost flags are per cell."""
+        types, offsets, connectivity = support.box_hexahedra(4)
+        mine = np.arange(COMM.rank, len(types), COMM.size)
+        starts = offsets[mine]
+        share = (types[mine].copy(), np.arange(0, 8 * len(mine) + 1, 8, dtype=np.int64),
+                 np.concatenate([connectivity[s:s + 8] for s in starts]).astype(np.int64))
+        _, image = self.render(tets=None, cells=share)
+        self.assert_square(image)
+        narrow = tuple(a.astype(np.int32) if a.dtype == np.int64 else a for a in share)
+        _, narrow_image = self.render(tets=None, cells=narrow)
+        if COMM.rank == 0:
+            np.testing.assert_array_equal(image, narrow_image)
+        cube_x = self.scene.points[share[2].reshape(-1, 8)].mean(axis=1)[:, 0]
+        _, ghosted = self.render(tets=None, cells=share, ghost=(cube_x > 0).astype(np.uint8))
+        self.assert_square(ghosted, keep=lambda x, slack: x < slack)
+
+    def test_bad_cells_raise_and_name_the_problem(self):
+        s = self.scene
+        types, offsets, connectivity = support.box_hexahedra(4)
+        bad_type = types.copy()
+        bad_type[3] = 42
+        cases = [
+            (TypeError, "cells: expected a tuple", dict(cells=[types, offsets, connectivity])),
+            (TypeError, "cells types", dict(cells=(types.astype(np.int32), offsets,
+                                                   connectivity))),
+            (TypeError, "same dtype", dict(cells=(types, offsets, connectivity.astype(np.int32)))),
+            (ValueError, "cells offsets", dict(cells=(types, offsets[:-1].copy(), connectivity))),
+            (ValueError, "offsets[-1]", dict(cells=(types, offsets, connectivity[:-1].copy()))),
+            (ValueError, "either tets or cells", dict(cells=(types, offsets, connectivity),
+                                                      tets=s.tets)),
+            (ValueError, "either tets or cells", dict(tets=None)),
+            (ValueError, "global_ids", dict(cells=(types, offsets, connectivity), tets=None,
+                                            global_ids=s.global_ids)),
+            (tetray.Error, "cell 3 (VTK cell type 42)", dict(cells=(bad_type, offsets,
+                                                                    connectivity), tets=None)),
+        ]
+        with self.adaptor() as a:
+            for error, message, bad in cases:
+                views = dict(points=s.points, tets=None, fields=s.fields) | bad
+                with self.subTest(bad=message), self.assertRaises(error) as raised:
+                    a.execute(0, 0.0, **views)
+                self.assertIn(message, str(raised.exception))
+            self.assertTrue(a.execute(0, 0.0, s.points, s.tets, s.fields).rendered)
+        self.assert_square(self.image())
+
     def test_bad_arguments_raise_and_the_next_call_renders(self):
         s = self.scene
         n, m = len(s.points), len(s.tets)

@@ -59,6 +59,23 @@ void tetray_ball_mesh(int cells, double* xyz, int64_t* tets, double* distance) {
   }
 }
 
+int64_t tetray_ball_hex_count(int cells) { return (int64_t)cells * cells * cells; }
+
+void tetray_ball_hexahedra(int cells, int64_t* connectivity) {
+  static const int corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  int64_t* out = connectivity;
+  for (int k = 0; k < cells; ++k) {
+    for (int j = 0; j < cells; ++j) {
+      for (int i = 0; i < cells; ++i) {
+        for (int c = 0; c < 8; ++c) {
+          *out++ = point_index(cells, i + corners[c][0], j + corners[c][1], k + corners[c][2]);
+        }
+      }
+    }
+  }
+}
+
 /* The largest amount by which the linear interpolant I f of f = |x| exceeds f at a point of its
  * level set I f = r (I f >= f, f being convex). On a simplex, I f - f <= R^2 / 2 max |D^2 f|
  * (Waldron 1998, "The error in linear interpolation at the vertices of a simplex"), with R the

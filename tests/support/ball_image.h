@@ -18,6 +18,12 @@ int64_t tetray_ball_tet_count(int cells);
 /* Fills xyz (3 per point), tets (4 per tet, 0-based) and distance (|x|, one per point). */
 void tetray_ball_mesh(int cells, double* xyz, int64_t* tets, double* distance);
 
+/* The same cubes as VTK hexahedra (8 point indices each, VTK's node order: the bottom face
+ * counter-clockwise seen from above, then the top face), for tetray_set_cells. Every tet the
+ * adaptor splits them into lies in its cube, so the pixel bounds below hold for them too. */
+int64_t tetray_ball_hex_count(int cells);
+void tetray_ball_hexahedra(int cells, int64_t* connectivity);
+
 /* The ball of level `radius` seen from the eye (0, 0, eye_distance) looking at the origin, up
  * +y, vertical field of view fov_deg, width x height pixels: the fewest and most pixels its image
  * may cover. */

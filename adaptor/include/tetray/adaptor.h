@@ -66,6 +66,14 @@ int tetray_set_mesh(tetray_adaptor* a, const void* xyz, int xyz_type, int64_t po
                     const void* displacement, int displacement_type, const void* connectivity,
                     int index_type, int64_t tet_count, const uint8_t* ghost,
                     const int64_t* global_ids);
+/* Cells instead of tets, after tetray_set_mesh (which clears them; pass it no tets): cell c has
+ * the VTK type types[c] and the 0-based point indices connectivity[offsets[c] .. offsets[c+1])
+ * in VTK's node order (cell_count + 1 offsets, int32 or int64 like the connectivity). Accepted:
+ * VTK types 10, 12, 13, 14, 24, and 71 and 72 of order 1 or 2, split into tets at each topology
+ * change (see tetray::CellsView). ghost (vtkGhostType per cell) may be NULL. */
+int tetray_set_cells(tetray_adaptor* a, const uint8_t* types, const void* offsets,
+                     const void* connectivity, int index_type, int64_t cell_count,
+                     const uint8_t* ghost);
 /* Adds the point field `name` or replaces its view. */
 int tetray_set_field(tetray_adaptor* a, const char* name, const void* values, int type,
                      int64_t count);

@@ -83,9 +83,28 @@ struct TetsView {
   }
 };
 
+// Cells of the types finite-element solvers write, laid out as VTK stores them: cell c has the
+// VTK type types[c] and the point indices connectivity[offsets[c], offsets[c + 1]) in VTK's node
+// order. Accepted: VTK_TETRA (10), VTK_HEXAHEDRON (12), VTK_WEDGE (13), VTK_PYRAMID (14),
+// VTK_QUADRATIC_TETRA (24), and VTK_LAGRANGE_TETRAHEDRON (71) and VTK_LAGRANGE_HEXAHEDRON (72)
+// of order 1 or 2. tetray splits them into tets at each topology change, through the mid-edge
+// nodes of quadratic cells; a face two cells share is split alike on every rank (by the points'
+// reference coordinates), so no crack opens between partitions. Depth ties resolve by the tets'
+// corner positions (TetsView::global_ids has no counterpart here).
+struct CellsView {
+  const std::uint8_t* types = nullptr;
+  const void* offsets = nullptr;        // count + 1 entries, offsets[0] = 0
+  const void* connectivity = nullptr;   // offsets[count] entries
+  IndexType type = IndexType::int64;    // of offsets and connectivity
+  std::size_t count = 0;                // number of cells
+  const std::uint8_t* ghost = nullptr;  // optional per-cell vtkGhostType flags, as TetsView's
+};
+
+// Points with either tets or cells (the other left empty).
 struct MeshView {
   PointsView points;
   TetsView tets;
+  CellsView cells{};  // "{}": MeshView{points, tets} compiles without -Wextra warnings
 };
 
 // One point field by name, one value per point.
