@@ -175,8 +175,9 @@ void read_mesh(const StepArguments& args, MeshView& mesh) {
   }
   if (args.tets.is_none()) {
     if (!args.global_ids.is_none()) {
-      throw py::value_error("global_ids: per-tet ids need tets; with cells ties resolve by "
-                            "position");
+      throw py::value_error(
+          "global_ids: per-tet ids need tets; with cells ties resolve by "
+          "position");
     }
     mesh.cells = read_cells(args);
   } else {
