@@ -77,6 +77,29 @@ TEST(Replay, RendersAPvdSeries) {
   EXPECT_TRUE(fs::exists(dir.path() / "pvd/plane/plane_000002.png"));
 }
 
+// --output writes where the config says nothing of; the config's own directory stays empty, and
+// a config mistake is still reported with the config's name.
+TEST(Replay, OutputOverridesTheConfigsDirectory) {
+  ScratchDir dir;
+  write_series(dir);
+  const std::string config = write_config(dir, "configured");
+  const std::string command = std::string(TETRAY_REPLAY) + " -c " + config + " --output " +
+                              (dir / "elsewhere") + " " + (dir / "series.pvd");
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  expect_moving_plane(dir / "elsewhere/tetray_log.csv");
+  EXPECT_TRUE(fs::exists(dir.path() / "elsewhere/plane/plane_000002.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "configured"));
+
+  std::ofstream(dir / "bad.yaml") << read_text(config) << "bogus_key: 1\n";
+  const std::string bad = std::string(TETRAY_REPLAY) + " -c " + (dir / "bad.yaml") + " -o " +
+                          (dir / "bad_out") + " " + (dir / "series.pvd") + " 2>" +
+                          (dir / "bad.txt");
+  EXPECT_EQ(std::system(bad.c_str()) >> 8, 2);
+  const std::string message = read_text(dir / "bad.txt");
+  EXPECT_NE(message.find("bad.yaml with --output"), std::string::npos) << message;
+  EXPECT_NE(message.find("bogus_key"), std::string::npos) << message;
+}
+
 TEST(Replay, RendersAListOfFilesAndFailsOnAMissingOne) {
   ScratchDir dir;
   const auto files = write_series(dir);

@@ -2,14 +2,16 @@
 """The heat equation on a tet box with DOLFINx 0.5, rendered in situ by tetray.
 
     PYTHONPATH=build/python mpirun -np 2 /usr/bin/python3 tools/dolfinx/heat_insitu.py \
-        [--config FILE] [--cells N] [--steps N] [--dt DT]
+        [--config FILE] [--cells N] [--steps N] [--dt DT] [--vtk DIR]
 
 du/dt - div(grad u) = f on [0, 1]^3, u = 0 on the boundary and at t = 0, with a Gaussian source f
 circling the box's vertical axis once over the run; P1 Lagrange in space, backward Euler in time.
 tetray reads DOLFINx's own arrays (README "Python", "DOLFINx"): the geometry's coordinates and
 dofmap without copies, the ghost cells flagged, the temperature per geometry node, and
 original_cell_index as the partition-independent tet ids. Images go to the config's output
-directory, relative to the working directory.
+directory, relative to the working directory. With --vtk DIR every step is also saved as DOLFINx
+writes it (DIR/temperature.pvd, one .pvtu of per-rank .vtu pieces per step), for
+`tetray-replay -c CONFIG --first-step 1 DIR/temperature.pvd`.
 """
 
 import argparse
@@ -18,7 +20,7 @@ import pathlib
 
 import numpy as np
 import ufl
-from dolfinx import fem, mesh
+from dolfinx import fem, io, mesh
 from dolfinx.fem.petsc import LinearProblem
 from mpi4py import MPI
 from petsc4py import PETSc
@@ -99,6 +101,7 @@ def main():
     parser.add_argument("--cells", type=int, default=10, help="cells per side (6 tets each)")
     parser.add_argument("--steps", type=int, default=24)
     parser.add_argument("--dt", type=float, default=0.005)
+    parser.add_argument("--vtk", type=pathlib.Path, help="also save every step here")
     args = parser.parse_args()
 
     comm = MPI.COMM_WORLD
@@ -109,12 +112,16 @@ def main():
     views = TetrayViews(msh, space)
     period = args.steps * args.dt
 
+    series = io.VTKFile(comm, str(args.vtk / "temperature.pvd"), "w") if args.vtk else None
+    solution.name = "temperature"
     with tetray.Adaptor(comm, args.config) as adaptor:
         for step in range(1, args.steps + 1):
             t = step * args.dt
             center.value[:] = source_center(t, period)
             problem.solve()  # also updates the ghost dofs (scatter_forward)
             previous.x.array[:] = solution.x.array
+            if series:
+                series.write_function(solution, t)
             if not adaptor.will_render(step, t):
                 continue
             report = adaptor.execute(
@@ -125,6 +132,8 @@ def main():
             if comm.rank == 0:
                 print(f"step {step} t={t:.3f} max u={peak:.3f} bvh={report.bvh_decision} "
                       f"blocked {1e3 * report.seconds_blocked:.1f} ms", flush=True)
+    if series:
+        series.close()
 
 
 if __name__ == "__main__":

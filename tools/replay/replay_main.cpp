@@ -2,11 +2,14 @@
 // through the same adaptor and config as a live run, so a config can be tuned offline. Rank 0
 // reads every step; other ranks take part with no tets. A step that cannot be read renders
 // nothing; a scene whose field a step lacks is skipped for that step. Exits non-zero if any step
-// failed.
+// failed. --output DIR writes where the config's output.directory would.
 #include <mpi.h>
+#include <yaml-cpp/yaml.h>
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,7 +56,8 @@ bool read_step(const SeriesEntry& entry, int rank, tetray::vtkio::TetGrid& grid)
 
 // Replays every step; a failed step is reported and the replay goes on. The adaptor's status is
 // the same on every rank, so rank 0 alone prints it.
-int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series, int rank) {
+int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series,
+           std::int64_t first_step, int rank) {
   int failed = 0;
   bool first = true;
   tetray::vtkio::TetGrid previous;
@@ -68,10 +72,12 @@ int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series, int
     const tetray::Changes changes{
         first || grid.points != previous.points,
         first || grid.tets != previous.tets || grid.ghost != previous.ghost, true};
-    const tetray::Status status = tetray::execute(adaptor, static_cast<std::int64_t>(step),
-                                                  series[step].time, grid, changes, nullptr);
+    const std::int64_t number = first_step + static_cast<std::int64_t>(step);
+    const tetray::Status status =
+        tetray::execute(adaptor, number, series[step].time, grid, changes, nullptr);
     if (!status.ok() && rank == 0) {
-      std::fprintf(stderr, "tetray-replay: step %zu: %s\n", step, status.message.c_str());
+      std::fprintf(stderr, "tetray-replay: step %lld: %s\n", static_cast<long long>(number),
+                   status.message.c_str());
     }
     failed += status.failed() ? 1 : 0;
     first = false;
@@ -85,12 +91,42 @@ int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series, int
   return failed;
 }
 
+// The adaptor of the config file, writing to `output` when it is not empty. The override is
+// made on the parsed YAML; a file yaml-cpp cannot read is handed to the adaptor as it is, whose
+// message names the file and the line.
+std::unique_ptr<tetray::Adaptor> create_adaptor(const std::string& config,
+                                                const std::string& output, tetray::Status& status) {
+  if (output.empty()) return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(config);
+  } catch (const YAML::Exception&) {
+    return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+  }
+  if (!root.IsMap() || (root["output"] && !root["output"].IsMap())) {
+    return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+  }
+  root["output"]["directory"] = output;
+  YAML::Emitter text;
+  text << root;
+  auto adaptor = tetray::Adaptor::create_from_yaml(MPI_COMM_WORLD, text.c_str(), status);
+  if (!adaptor) status.message = config + " with --output " + output + ": " + status.message;
+  return adaptor;
+}
+
 int run(int argc, char** argv, int rank) {
   CLI::App app{"tetray-replay: render a saved .pvd or .vtu/.pvtu series with a tetray config"};
   std::string config;
+  std::string output;
   std::vector<std::string> inputs;
   app.add_option("-c,--config", config, "YAML config (the adaptor's keys at the top level)")
       ->required();
+  std::int64_t first_step = 0;
+  app.add_option("-o,--output", output, "output directory, instead of the config's");
+  app.add_option("--first-step", first_step,
+                 "the step number of the series' first entry (the trigger and the file names "
+                 "count from it)")
+      ->capture_default_str();
   app.add_option("inputs", inputs, "a .pvd file, or .vtu/.pvtu files in step order")->required();
   try {
     app.parse(argc, argv);
@@ -104,12 +140,12 @@ int run(int argc, char** argv, int rank) {
     return 2;
   }
   tetray::Status status;
-  auto adaptor = tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+  auto adaptor = create_adaptor(config, output, status);
   if (!adaptor) {
     if (rank == 0) std::fprintf(stderr, "tetray-replay: %s\n", status.message.c_str());
     return 2;
   }
-  return replay(*adaptor, series, rank) == 0 ? 0 : 1;
+  return replay(*adaptor, series, first_step, rank) == 0 ? 0 : 1;
 }
 
 }  // namespace

@@ -57,7 +57,12 @@ std::string read_summary(const std::string& path, Summary& summary) {
   const std::filesystem::path directory = std::filesystem::path(path).parent_path();
   for (int k = 0; k < grid->GetNumberOfNestedElements(); ++k) {
     vtkXMLDataElement* element = grid->GetNestedElement(k);
-    if (named(element, "PPointData")) summary.point_fields = array_names(element);
+    if (named(element, "PPointData")) {
+      // Point ghost flags (DOLFINx writes them) are not a field: the pieces' reader skips them.
+      for (std::string& name : array_names(element)) {
+        if (name != "vtkGhostType") summary.point_fields.push_back(std::move(name));
+      }
+    }
     if (named(element, "PCellData")) {
       for (const std::string& name : array_names(element)) summary.ghost |= name == "vtkGhostType";
     }
