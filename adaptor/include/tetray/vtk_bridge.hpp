@@ -24,8 +24,9 @@ struct TetGrid {
   std::map<std::string, std::vector<double>> point_fields;  // scalar point arrays by name
 };
 
-// Converts an in-memory grid. Returns false and fills `error` on cells other than tets (naming
-// the cell type and the first such cell).
+// Converts an in-memory grid, splitting hexahedra, wedges, pyramids and quadratic cells into tets
+// (README "Cells other than tets"). Returns false and fills `error` on cells it cannot split
+// (naming the cell type and the first such cell).
 bool from_vtk(vtkUnstructuredGrid* grid, TetGrid& out, std::string& error);
 
 }  // namespace vtkio

@@ -1,0 +1,60 @@
+// A small tetray-split-study run: its JSON has a row per field, size and level, and the error
+// behaves as interpolation theory says. Sampling each cell on a finer lattice (level 2) must shrink
+// the mean depth error against the reference, and so must doubling the cells of the mesh; a row
+// that showed no error at all would mean the reference is the image itself.
+#include <gtest/gtest.h>
+#include <json/json.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+Json::Value run_study() {
+  const auto path = std::filesystem::temp_directory_path() / "tetray_split_study.json";
+  std::filesystem::remove(path);
+  const std::string command = std::string(TETRAY_SPLIT_STUDY) +
+                              " --sizes 4 8 --levels 1 2 --reference 48 --size 128 --json " +
+                              path.string() + " > /dev/null";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream file(path);
+  Json::Value rows;
+  Json::CharReaderBuilder reader;
+  std::string errors;
+  EXPECT_TRUE(Json::parseFromStream(reader, file, &rows, &errors)) << errors;
+  return rows;
+}
+
+// The row of `field`, `cells` and `level`.
+const Json::Value& row(const Json::Value& rows, const std::string& field, int cells, int level) {
+  for (const Json::Value& r : rows) {
+    if (r["field"].asString() == field && r["cells_per_side"].asInt() == cells &&
+        r["level"].asInt() == level) {
+      return r;
+    }
+  }
+  static const Json::Value missing;
+  ADD_FAILURE() << "no row " << field << " " << cells << " " << level;
+  return missing;
+}
+
+TEST(SplitStudy, ErrorFallsWithLevelAndMeshSize) {
+  const Json::Value rows = run_study();
+  ASSERT_TRUE(rows.isArray());
+  EXPECT_EQ(rows.size(), 8u);
+  for (const char* field : {"Q1 hexahedra", "Q2 hexahedra"}) {
+    const auto error = [&](int cells, int level) {
+      return row(rows, field, cells, level)["mean_depth_error"].asDouble();
+    };
+    EXPECT_GT(error(4, 1), 0) << field;
+    EXPECT_LT(error(4, 2), 0.6 * error(4, 1)) << field;
+    EXPECT_LT(error(8, 1), 0.6 * error(4, 1)) << field;
+    EXPECT_GT(row(rows, field, 4, 2)["tets"].asUInt64(),
+              7 * row(rows, field, 4, 1)["tets"].asUInt64());
+    EXPECT_TRUE(row(rows, field, 8, 2)["trace_ms"].isNumeric()) << field;
+  }
+}
+
+}  // namespace
