@@ -7,12 +7,10 @@
 #include <json/json.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 
+#include "support/json_output.hpp"
 #include "support/reference_intersector.hpp"
 #include "support/render_fixtures.hpp"
 
@@ -23,18 +21,10 @@ using tetray::render::Vec3d;
 constexpr int kCells = 6, kSide = 64;
 
 Json::Value run_tiny_bench() {
-  const auto path = std::filesystem::temp_directory_path() / "tetray_bench_smoke.json";
-  std::filesystem::remove(path);
-  const std::string command = std::string(TETRAY_BENCH_EXECUTABLE) + " --sizes " +
-                              std::to_string(kCells) + " --size-px " + std::to_string(kSide) +
-                              " --steps 2 --threads 2 --json " + path.string() + " > /dev/null";
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream file(path);
-  Json::Value root;
-  Json::CharReaderBuilder reader;
-  std::string errors;
-  EXPECT_TRUE(Json::parseFromStream(reader, file, &root, &errors)) << errors;
-  return root;
+  return tetray::testing::run_for_json(std::string(TETRAY_BENCH_EXECUTABLE) + " --sizes " +
+                                           std::to_string(kCells) + " --size-px " +
+                                           std::to_string(kSide) + " --steps 2 --threads 2",
+                                       "tetray_bench_smoke.json");
 }
 
 void expect_numbers(const Json::Value& object, std::initializer_list<const char*> keys) {

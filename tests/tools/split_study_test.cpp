@@ -5,26 +5,16 @@
 #include <gtest/gtest.h>
 #include <json/json.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "support/json_output.hpp"
 
 namespace {
 
 Json::Value run_study() {
-  const auto path = std::filesystem::temp_directory_path() / "tetray_split_study.json";
-  std::filesystem::remove(path);
-  const std::string command = std::string(TETRAY_SPLIT_STUDY) +
-                              " --sizes 4 8 --levels 1 2 --reference 48 --size 128 --json " +
-                              path.string() + " > /dev/null";
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream file(path);
-  Json::Value rows;
-  Json::CharReaderBuilder reader;
-  std::string errors;
-  EXPECT_TRUE(Json::parseFromStream(reader, file, &rows, &errors)) << errors;
-  return rows;
+  return tetray::testing::run_for_json(
+      std::string(TETRAY_SPLIT_STUDY) + " --sizes 4 8 --levels 1 2 --reference 48 --size 128",
+      "tetray_split_study.json");
 }
 
 // The row of `field`, `cells` and `level`.
