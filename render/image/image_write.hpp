@@ -34,7 +34,7 @@ std::optional<ExrCompression> exr_compression_named(std::string_view name);
 // The PNG deflate levels (libdeflate's scale: 0 stores, 1 fastest, 12 smallest).
 inline constexpr int kMaxPngCompression = 12;
 
-// How the writer encodes: the defaults are the config's (README, "Encoding").
+// How the writer encodes; the defaults are the config's (docs/architecture.md §3, §4).
 struct EncodeOptions {
   ExrCompression exr_compression = ExrCompression::rle;
   int png_compression = 1;

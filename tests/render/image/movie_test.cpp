@@ -147,6 +147,11 @@ TEST(Movie, AnUnclosedMoviePlaysUpToItsLastFrame) {
   ASSERT_TRUE(read.error.empty()) << read.error;
   EXPECT_EQ(read.frames, 5);
   EXPECT_EQ(read.width, 64);
+  // A kill in the middle of writing the last fragment: the frames before it still play.
+  std::filesystem::resize_file(copy, std::filesystem::file_size(copy) - 40);
+  const DecodedMovie torn = decode_movie(copy);
+  ASSERT_TRUE(torn.error.empty()) << torn.error;
+  EXPECT_EQ(torn.frames, 4);
 }
 
 TEST(Movie, RefusesAnotherSizeAndFramesAfterClose) {
