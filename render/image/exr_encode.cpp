@@ -88,6 +88,9 @@ void encode_into(const Framebuffer& image, ExrCompression compression,
   slices.insert("Z", Imf::Slice(Imf::FLOAT, depth, sizeof(float),
                                 sizeof(float) * static_cast<std::size_t>(image.width)));
 
+  // Room for the uncompressed pixels (12 bytes each) and the header and line offsets: the stream
+  // then grows without copying what it already holds.
+  bytes.reserve(12 * image.pixel_count() + 16 * static_cast<std::size_t>(image.height) + 4096);
   MemoryStream stream(bytes);
   Imf::OutputFile file(stream, exr_header(image.width, image.height, compression));
   file.setFrameBuffer(slices);
