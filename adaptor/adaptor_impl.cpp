@@ -81,7 +81,7 @@ Status Adaptor::Impl::prepare_outputs_on_this_rank() {
     error = prepare_rank_image_directories(output, config_.scenes, comm_.rank);
   }
   if (!error.empty()) return {StatusCode::io_error, error};
-  if (is_writer()) writer_ = std::make_unique<ImageWriter>(output);
+  if (is_writer()) writer_ = std::make_unique<ImageWriter>(output, threads_);
   return Status::success();
 }
 
@@ -508,7 +508,7 @@ Status Adaptor::Impl::finalize() {
   finalized_ = true;
   if (!started_) return Status::success();
   const Status status = guarded("finalize", [&] {
-    if (writer_) writer_->drain();
+    if (writer_) writer_->finish();
     Status pending = take_pending_error();
     writer_.reset();
     return pending;

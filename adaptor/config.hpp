@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "render/image/image_write.hpp"
+#include "render/image/movie_writer.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
@@ -65,8 +67,12 @@ struct Output {
   bool exr = true;
   bool png = true;
   bool cinema = true;
-  int png_compression = 1;  // zlib level 0..9, fast by default
-  int queue_depth = 2;      // images waiting for the writer thread; 0 writes in execute
+  int png_compression = 1;  // deflate level 0..12, fast by default (config_output.cpp)
+  render::ExrCompression exr_compression = render::EncodeOptions{}.exr_compression;
+  int writer_threads = 0;  // encoding threads on the writer rank; 0: writer_thread_share
+  bool mp4 = false;        // a movie per scene, its frames the images written
+  render::MovieOptions movie{};
+  int queue_depth = 2;  // images waiting for the writer thread; 0 writes in execute
   bool quiet = false;
   int writer_rank = 0;  // receives the composited image; writes images, Cinema rows, the log
   bool per_rank_images = false;  // each rank also writes its own layer (debugging)

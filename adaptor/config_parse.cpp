@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "config_output.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
@@ -69,7 +70,7 @@ Output parse_output(const YamlReader& r, const YAML::Node& node, int rank_count)
   const std::string key = "output";
   r.allow_keys(node, key,
                {"directory", "formats", "cinema", "png_compression", "writer_queue_depth", "quiet",
-                "writer_rank", "per_rank_images"});
+                "writer_rank", "per_rank_images", "exr_compression", "writer_threads", "movie"});
   Output out;
   if (node["directory"]) out.directory = r.string(node["directory"], "output.directory");
   if (const YAML::Node formats = node["formats"]) {
@@ -77,15 +78,13 @@ Output parse_output(const YamlReader& r, const YAML::Node& node, int rank_count)
     if (formats.size() == 0) r.fail(formats, "output.formats", "name at least one of exr, png");
     out.exr = out.png = false;
     for (std::size_t i = 0; i < formats.size(); ++i) {
-      const std::string f = r.choice(formats[i], item_key("output.formats", i), {"exr", "png"});
-      (f == "exr" ? out.exr : out.png) = true;
+      const std::string f =
+          r.choice(formats[i], item_key("output.formats", i), {"exr", "png", "mp4"});
+      (f == "exr" ? out.exr : f == "png" ? out.png : out.mp4) = true;
     }
   }
   if (node["cinema"]) out.cinema = r.boolean(node["cinema"], "output.cinema");
-  if (node["png_compression"]) {
-    out.png_compression =
-        static_cast<int>(r.integer_in(node["png_compression"], "output.png_compression", 0, 9));
-  }
+  parse_encoding(r, node, out);
   if (node["writer_queue_depth"]) {
     out.queue_depth = static_cast<int>(
         r.integer_in(node["writer_queue_depth"], "output.writer_queue_depth", 0, 64));

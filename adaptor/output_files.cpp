@@ -5,6 +5,7 @@
 #include <functional>
 #include <string_view>
 
+#include "config_output.hpp"
 #include "line_file.hpp"
 #include "render/core/stopwatch.hpp"
 #include "render/image/image_write.hpp"
@@ -237,13 +238,14 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
   const bool listed = output.cinema && rendered_before(output, r);
   put_background_under(job.image, job.background);
   r.hits = count_hits(job.image);
+  const render::Stopwatch encoding;
+  const render::EncodedImages images =
+      render::encode_images(job.image, output.exr, output.png, config::encode_options(output));
+  r.encode_ms += encoding.ms();
   for (const char* format : {"exr", "png"}) {
     const bool exr = format[0] == 'e';
     if (!(exr ? output.exr : output.png)) continue;
-    const render::Stopwatch encoding;
-    const render::EncodedImage encoded =
-        exr ? render::encode_exr(job.image) : render::encode_png(job.image, output.png_compression);
-    r.encode_ms += encoding.ms();
+    const render::EncodedImage& encoded = exr ? images.exr : images.png;
     if (!encoded.ok()) return encoded.error;
     const render::Stopwatch writing;
     const auto written = render::write_file_atomically(

@@ -87,4 +87,6 @@ int default_thread_count() {
   return threads;
 }
 
+int writer_thread_share(int budget) { return std::max(1, budget / 2); }
+
 }  // namespace tetray

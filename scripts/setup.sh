@@ -10,7 +10,8 @@ packages=(
   libvtk9-dev libopenexr-dev libopenmpi-dev openmpi-bin libtbb-dev
   libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   libxsimd-dev libembree-dev python3-imath libeigen3-dev libcli11-dev gfortran
-  libjsoncpp-dev clang libclang-rt-14-dev
+  libjsoncpp-dev clang libclang-rt-14-dev libdeflate-dev
+  libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
 )
 

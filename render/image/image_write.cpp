@@ -5,6 +5,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include <tbb/parallel_invoke.h>
+
 namespace tetray::render {
 namespace {
 
@@ -15,8 +17,9 @@ WriteResult write_encoded(const EncodedImage& encoded, const std::string& path) 
 
 }  // namespace
 
-WriteResult write_exr(const Framebuffer& image, const std::string& path) {
-  return write_encoded(encode_exr(image), path);
+WriteResult write_exr(const Framebuffer& image, const std::string& path,
+                      ExrCompression compression) {
+  return write_encoded(encode_exr(image, compression), path);
 }
 
 WriteResult write_png(const Framebuffer& image, const std::string& path, int compression_level) {
@@ -32,12 +35,30 @@ std::optional<ImageFormat> image_format_of(const std::string& path) {
   return std::nullopt;
 }
 
+EncodedImage encode_image(ImageFormat format, const Framebuffer& image,
+                          const EncodeOptions& options) {
+  return format == ImageFormat::exr ? encode_exr(image, options.exr_compression)
+                                    : encode_png(image, options.png_compression);
+}
+
+EncodedImages encode_images(const Framebuffer& image, bool exr, bool png,
+                            const EncodeOptions& options) {
+  EncodedImages encoded;
+  const auto encode_exr_image = [&] {
+    if (exr) encoded.exr = encode_image(ImageFormat::exr, image, options);
+  };
+  const auto encode_png_image = [&] {
+    if (png) encoded.png = encode_image(ImageFormat::png, image, options);
+  };
+  tbb::parallel_invoke(encode_exr_image, encode_png_image);
+  return encoded;
+}
+
 WriteResult write_image(const Framebuffer& image, const std::string& path,
-                        int png_compression_level) {
+                        const EncodeOptions& options) {
   const std::optional<ImageFormat> format = image_format_of(path);
   if (!format) return {false, "cannot write '" + path + "': not an .exr or .png file name"};
-  return *format == ImageFormat::exr ? write_exr(image, path)
-                                     : write_png(image, path, png_compression_level);
+  return write_encoded(encode_image(*format, image, options), path);
 }
 
 }  // namespace tetray::render

@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "render/core/framebuffer.hpp"
@@ -17,11 +18,35 @@ struct WriteResult {
   std::string message;  // what failed and where, when !ok
 };
 
-// EXR: channels R, G, B, A (half) and Z (float depth), scanline, ZIP compression.
-WriteResult write_exr(const Framebuffer& image, const std::string& path);
+// The compressions of OpenEXR 3.1, numbered as its Imf::Compression.
+enum class ExrCompression { none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab };
 
-// PNG: 8-bit sRGB RGBA. zlib level 0..9 (1 = fast, the default).
-WriteResult write_png(const Framebuffer& image, const std::string& path, int compression_level = 1);
+struct ExrCompressionInfo {
+  ExrCompression compression;
+  std::string_view name;  // lower case, as the config spells it: "zip", "piz", ...
+  bool lossless;          // for both channel types of the image (RGBA half, Z float)
+  std::string_view what;  // one line: how it works, what it loses
+};
+std::span<const ExrCompressionInfo> exr_compressions();  // all, in enum order
+const ExrCompressionInfo& exr_compression_info(ExrCompression compression);
+std::optional<ExrCompression> exr_compression_named(std::string_view name);
+
+// The PNG deflate levels (libdeflate's scale: 0 stores, 1 fastest, 12 smallest).
+inline constexpr int kMaxPngCompression = 12;
+
+// How the writer encodes; the defaults are the config's (docs/architecture.md §3, §4).
+struct EncodeOptions {
+  ExrCompression exr_compression = ExrCompression::rle;
+  int png_compression = 1;
+};
+
+// EXR: channels R, G, B, A (half) and Z (float depth), scanline.
+WriteResult write_exr(const Framebuffer& image, const std::string& path,
+                      ExrCompression compression = EncodeOptions{}.exr_compression);
+
+// PNG: 8-bit sRGB RGBA at a deflate level 0..kMaxPngCompression.
+WriteResult write_png(const Framebuffer& image, const std::string& path,
+                      int compression_level = EncodeOptions{}.png_compression);
 
 enum class ImageFormat { exr, png };
 
@@ -30,7 +55,7 @@ std::optional<ImageFormat> image_format_of(const std::string& path);
 
 // write_exr or write_png by the path's extension; an error for any other extension.
 WriteResult write_image(const Framebuffer& image, const std::string& path,
-                        int png_compression_level = 1);
+                        const EncodeOptions& options = {});
 
 // Encoding apart from writing, so that a caller (the adaptor's writer thread) can run and time
 // the two stages separately; write_exr and write_png are encode + write_file_atomically.
@@ -40,8 +65,20 @@ struct EncodedImage {
 
   bool ok() const { return error.empty(); }
 };
-EncodedImage encode_exr(const Framebuffer& image);
-EncodedImage encode_png(const Framebuffer& image, int compression_level = 1);
+// Both run their loops with oneTBB in the caller's arena.
+EncodedImage encode_exr(const Framebuffer& image,
+                        ExrCompression compression = EncodeOptions{}.exr_compression);
+EncodedImage encode_png(const Framebuffer& image,
+                        int compression_level = EncodeOptions{}.png_compression);
+EncodedImage encode_image(ImageFormat format, const Framebuffer& image,
+                          const EncodeOptions& options);
+// The EXR and the PNG of one image, as tasks of the caller's arena that run at once where both
+// are wanted; a format not wanted stays empty.
+struct EncodedImages {
+  EncodedImage exr, png;
+};
+EncodedImages encode_images(const Framebuffer& image, bool exr, bool png,
+                            const EncodeOptions& options);
 
 // Writes `bytes` to a temporary file next to `path`, then renames it over `path`. On failure the
 // temporary file is removed and an existing file at `path` is left as it was.

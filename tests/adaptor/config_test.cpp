@@ -141,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"scenes:\n  - name: s\n    field: f\n    isovalues: [0]\n"
                   "    image: {width: -3}\n",
                   "bad.yaml:5:", "scenes[0].image.width"},
-        BadConfig{"output: {png_compression: 12}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
+        BadConfig{"output: {png_compression: 13}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
                   "bad.yaml:1:", "output.png_compression"},
         BadConfig{"output: {writer_rank: -1}\nscenes: [{name: s, field: f, isovalues: [0]}]\n",
                   "bad.yaml:1:", "output.writer_rank"},
@@ -212,8 +212,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Edge{"output: {png_compression: -1}\n", kIso, false, "output.png_compression"},
         Edge{"output: {png_compression: 0}\n", kIso, true, ""},
-        Edge{"output: {png_compression: 9}\n", kIso, true, ""},
-        Edge{"output: {png_compression: 10}\n", kIso, false, "output.png_compression"},
+        Edge{"output: {png_compression: 12}\n", kIso, true, ""},
+        Edge{"output: {png_compression: 13}\n", kIso, false, "output.png_compression"},
         Edge{"output: {writer_queue_depth: -1}\n", kIso, false, "output.writer_queue_depth"},
         Edge{"output: {writer_queue_depth: 0}\n", kIso, true, ""},
         Edge{"output: {writer_queue_depth: 64}\n", kIso, true, ""},
