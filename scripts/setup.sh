@@ -12,6 +12,7 @@ packages=(
   libxsimd-dev libembree-dev python3-imath libeigen3-dev libcli11-dev gfortran
   libjsoncpp-dev clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
+  libfreetype-dev fonts-dejavu-core chromium
 )
 
 missing=()
