@@ -16,6 +16,7 @@
 #include "render/volume/mesh_check.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
+#include "viewer_files.hpp"
 
 namespace tetray {
 namespace {
@@ -452,15 +453,32 @@ Status Adaptor::Impl::composite_and_submit() {
       if (Status st = composite_and_submit_view(s, v, sums[k], rss); !st.ok()) return st;
     }
   }
-  return Status::success();
+  return is_writer() ? write_viewer_page_once() : Status::success();
 }
 
-// One view of a scene: composited onto the writer rank, which queues it with its own log row
-// (the scene's shared stage times, this view's trace and composite times).
+// With the first images, not at create: creating writes only what must exist before any step
+// (folders, table headers), so that a nearly full disk fails at an image, as a writer error.
+Status Adaptor::Impl::write_viewer_page_once() {
+  if (viewer_page_written_ || !config_.output.cinema) return Status::success();
+  viewer_page_written_ = true;
+  std::vector<std::string> names;
+  for (const config::Scene& s : config_.scenes) names.push_back(s.name);
+  std::string error = write_viewer_page(config_.output.directory, names);
+  if (error.empty()) return Status::success();
+  return {StatusCode::io_error, std::move(error)};
+}
+
+// One view of a scene: composited onto the writer rank, which queues it with its own log row:
+// this view's trace and composite times, and (first view only, as shared work goes to the first
+// due scene) the stages the views share, run once for all of them.
 Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
                                                 const SceneCounters& sums, std::uint64_t rss) {
   StepRecord r = s.record;
   r.trace_ms = s.trace_ms[v];
+  if (v > 0) {
+    r.check_ms = r.ingest_ms = r.bvh_ms = r.color_ms = 0;
+    r.bvh_update = "none";
+  }
   render::Framebuffer& image = s.images[v];
   if (comm_.size > 1) {
     const render::Stopwatch watch;

@@ -245,11 +245,6 @@ std::string prepare_outputs(const config::Output& output,
   const std::string page = viewer_page_path(output.directory);
   const auto is_own = [&](const std::string& n) { return named_as(log)(n) || named_as(page)(n); };
   if (auto e = remove_stale_temporaries_in(output.directory, is_own); !e.empty()) return e;
-  if (output.cinema) {
-    std::vector<std::string> names;
-    for (const config::Scene& s : scenes) names.push_back(s.name);
-    if (auto e = write_viewer_page(output.directory, names); !e.empty()) return e;
-  }
   return reopen_table(log, log_header(), [](const std::string&) { return true; });
 }
 

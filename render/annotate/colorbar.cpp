@@ -8,22 +8,32 @@
 namespace tetray::render {
 namespace {
 
-// The mask grown by `radius` pixels in every direction (a max filter over a square), so that a
-// halo of it drawn under the text outlines every glyph.
+// The mask grown by `radius` pixels in every direction (a max filter over a square, done as a
+// row pass then a column pass), so that a halo of it drawn under the text outlines every glyph.
 TextMask dilate(const TextMask& mask, int radius) {
   TextMask out;
   out.width = mask.width + 2 * radius;
   out.height = mask.height + 2 * radius;
   out.pen_x = mask.pen_x + radius;
   out.baseline = mask.baseline + radius;
-  out.coverage.assign(static_cast<std::size_t>(out.width) * out.height, 0);
+  const auto at = [&](std::vector<std::uint8_t>& v, int x, int y) -> std::uint8_t& {
+    return v[static_cast<std::size_t>(y) * out.width + x];
+  };
+  std::vector<std::uint8_t> rows(static_cast<std::size_t>(out.width) * out.height, 0);
   for (int y = 0; y < mask.height; ++y) {
     for (int x = 0; x < mask.width; ++x) {
       const std::uint8_t c = mask.at(x, y);
-      if (c == 0) continue;
-      for (int dy = 0; dy <= 2 * radius; ++dy) {
-        std::uint8_t* row = &out.coverage[static_cast<std::size_t>(y + dy) * out.width + x];
-        for (int dx = 0; dx <= 2 * radius; ++dx) row[dx] = std::max(row[dx], c);
+      for (int dx = 0; c != 0 && dx <= 2 * radius; ++dx) {
+        at(rows, x + dx, y + radius) = std::max(at(rows, x + dx, y + radius), c);
+      }
+    }
+  }
+  out.coverage.assign(rows.size(), 0);
+  for (int y = radius; y < radius + mask.height; ++y) {
+    for (int x = 0; x < out.width; ++x) {
+      const std::uint8_t c = at(rows, x, y);
+      for (int dy = -radius; c != 0 && dy <= radius; ++dy) {
+        at(out.coverage, x, y + dy) = std::max(at(out.coverage, x, y + dy), c);
       }
     }
   }
