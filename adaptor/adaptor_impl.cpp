@@ -16,7 +16,6 @@
 #include "render/volume/mesh_check.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
-#include "viewer_files.hpp"
 
 namespace tetray {
 namespace {
@@ -453,19 +452,7 @@ Status Adaptor::Impl::composite_and_submit() {
       if (Status st = composite_and_submit_view(s, v, sums[k], rss); !st.ok()) return st;
     }
   }
-  return is_writer() ? write_viewer_page_once() : Status::success();
-}
-
-// With the first images, not at create: creating writes only what must exist before any step
-// (folders, table headers), so that a nearly full disk fails at an image, as a writer error.
-Status Adaptor::Impl::write_viewer_page_once() {
-  if (viewer_page_written_ || !config_.output.cinema) return Status::success();
-  viewer_page_written_ = true;
-  std::vector<std::string> names;
-  for (const config::Scene& s : config_.scenes) names.push_back(s.name);
-  std::string error = write_viewer_page(config_.output.directory, names);
-  if (error.empty()) return Status::success();
-  return {StatusCode::io_error, std::move(error)};
+  return Status::success();
 }
 
 // One view of a scene: composited onto the writer rank, which queues it with its own log row:
@@ -502,6 +489,12 @@ Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
   job.record = r;
   job.annotations = annotations_for(s.config, r, s.colormap, static_cast<float>(s.color_range.lo),
                                     static_cast<float>(s.color_range.hi));
+  // The viewer page goes with the run's first image, not at create: creating writes only what
+  // must exist before any step (folders, table headers), so a nearly full disk fails at an image.
+  if (!viewer_page_sent_ && config_.output.cinema) {
+    for (const config::Scene& scene : config_.scenes) job.viewer_page_scenes.push_back(scene.name);
+    viewer_page_sent_ = true;
+  }
   if (s.config.orbit.enabled) {
     job.view = static_cast<int>(v);
     job.phi = s.views[v].phi_deg;

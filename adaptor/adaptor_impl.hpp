@@ -80,7 +80,6 @@ class Adaptor::Impl {
   Status trace_scenes(std::span<const FieldView> fields);
   Status write_rank_images();
   Status composite_and_submit();
-  Status write_viewer_page_once();
   Status composite_and_submit_view(SceneState& s, std::size_t v, const SceneCounters& sums,
                                    std::uint64_t rss);
 
@@ -129,7 +128,7 @@ class Adaptor::Impl {
   // the writer): reported at the next agreement, with the writer's errors, so that every rank
   // returns the same status from each call.
   Status pending_;
-  bool viewer_page_written_ = false;  // index.html, by the writer rank at its first images
+  bool viewer_page_sent_ = false;  // index.html, with the writer rank's first image
   bool started_ = false;
   bool finalized_ = false;
 };

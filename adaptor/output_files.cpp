@@ -274,7 +274,9 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
   StepRecord& r = job.record;
   const bool listed = output.cinema && rendered_before(output, job);
   put_background_under(job.image, job.background);
+  const render::Stopwatch annotating;  // counted as encoding: it prepares the encoded pixels
   render::draw_annotations(job.image, job.annotations, job.background);
+  r.encode_ms += annotating.ms();
   r.hits = count_hits(job.image);
   for (const char* format : {"exr", "png"}) {
     const bool exr = format[0] == 'e';
@@ -300,7 +302,9 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
     if (auto e = write_cinema_script(output.directory, r.scene); !e.empty()) return e;
   }
   r.write_ms += appending.ms();
-  return append_line(log_path(output.directory), log_row(r));
+  if (auto e = append_line(log_path(output.directory), log_row(r)); !e.empty()) return e;
+  if (job.viewer_page_scenes.empty()) return {};
+  return write_viewer_page(output.directory, job.viewer_page_scenes);
 }
 
 }  // namespace tetray

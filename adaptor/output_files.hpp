@@ -57,6 +57,9 @@ struct ImageJob {
   // and theta columns).
   int view = -1;
   double phi = 0, theta = 0;
+  // Non-empty for the run's first image: index.html is written for these scenes, after the
+  // image and its rows (so an image's error is the one reported).
+  std::vector<std::string> viewer_page_scenes;
 };
 
 // Background, annotations, image files, Cinema row, log row; fills the record's writer timings and

@@ -15,7 +15,8 @@ extern const char* const kViewerPage;  // generated from adaptor/viewer/index.ht
 std::string viewer_page_path(const std::string& directory);
 std::string cinema_script_path(const std::string& directory, const std::string& scene);
 
-// The page for these scenes, written to viewer_page_path (by the adaptor with its first images).
+// The page for these scenes, written to viewer_page_path (by the writer with the run's first
+// image).
 std::string write_viewer_page(const std::string& directory, const std::vector<std::string>& scenes);
 
 // data.js of the scene from its data.csv as it is now on disk.
