@@ -56,7 +56,8 @@ class Viewer : public ::testing::Test {
     const std::string command =
         "timeout 60 " + chromium_ +
         " --headless --no-sandbox --disable-gpu --disable-background-networking"
-        " --disable-component-update --disable-sync --no-first-run --user-data-dir=" +
+        " --disable-component-update --disable-sync --no-first-run --disable-dev-shm-usage"
+        " --user-data-dir=" +
         (dir_.path() / "profile").string() + " --virtual-time-budget=10000 --dump-dom 'file://" +
         (out_ / "index.html").string() + "?" + query + "' > " + dump.string() + " 2> " +
         (dir_.path() / "chromium.log").string();
