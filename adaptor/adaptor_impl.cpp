@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "annotations.hpp"
 #include "color_field.hpp"
 #include "input_views.hpp"
 #include "output_files.hpp"
@@ -388,23 +389,33 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
               ? ranges_.scenes[k].color
               : render::ValueRange{s.config.color_range.lo, s.config.color_range.hi};
       usable_color_range(range);
+      s.color_range = range;
       options.color_by = {s.colormap, static_cast<float>(range.lo), static_cast<float>(range.hi)};
       s.record.color_ms += watch.ms();
     }
-    const render::Stopwatch watch;
-    s.image = render::trace(volume.volume(), volume.bvh(), camera_for(s, ranges_.scenes[k]),
-                            s.config.surfaces, options);
-    s.record.trace_ms = watch.ms();
+    // Every view from the one BVH of the step: only the camera changes.
+    const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+    s.images.resize(s.views.size());
+    s.trace_ms.resize(s.views.size());
+    for (std::size_t v = 0; v < s.views.size(); ++v) {
+      const render::Stopwatch watch;
+      s.images[v] =
+          render::trace(volume.volume(), volume.bvh(),
+                        s.config.orbit.enabled ? orbit_camera(camera, s.views[v]) : camera,
+                        s.config.surfaces, options);
+      s.trace_ms[v] = watch.ms();
+    }
   }
   return Status::success();
 }
 
-// Before compositing, which leaves only the writer rank's image defined.
+// Before compositing, which leaves only the writer rank's image defined. Of an orbit, the first
+// view.
 Status Adaptor::Impl::write_rank_images() {
   for (const SceneState& s : scenes_) {
     if (!s.due) continue;
     std::string error =
-        write_rank_image(config_.output, s.config.name, s.record.step, comm_.rank, s.image);
+        write_rank_image(config_.output, s.config.name, s.record.step, comm_.rank, s.images[0]);
     if (!error.empty()) return {StatusCode::io_error, std::move(error)};
   }
   return Status::success();
@@ -445,30 +456,59 @@ Status Adaptor::Impl::composite_and_submit() {
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
-    if (comm_.size > 1) {
-      const render::Stopwatch watch;
-      const render::CompositeOptions options{.root = writer};
-      if (int rc = render::composite(s.image, comm_.comm, options); rc != MPI_SUCCESS) {
-        return {StatusCode::mpi_error,
-                "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
-      }
-      s.record.composite_ms = watch.ms();
+    for (std::size_t v = 0; v < s.views.size(); ++v) {
+      if (Status st = composite_and_submit_view(s, v, sums[k], rss); !st.ok()) return st;
     }
-    if (!is_writer()) continue;
-    StepRecord& r = s.record;
-    r.tets = sums[k].tets;
-    r.kept_tets = sums[k].kept_tets;
-    r.skipped_tets = sums[k].skipped_tets;
-    r.bvh_bytes = sums[k].bytes;
-    r.peak_rss_bytes = rss;
-    r.rays =
-        static_cast<std::uint64_t>(s.image.pixel_count()) * static_cast<std::uint64_t>(comm_.size);
-    ImageJob job;
-    job.image = std::move(s.image);
-    std::copy(std::begin(s.config.background), std::end(s.config.background), job.background);
-    job.record = r;
-    writer_->submit(std::move(job));
   }
+  return Status::success();
+}
+
+// One view of a scene: composited onto the writer rank, which queues it with its own log row:
+// this view's trace and composite times, and (first view only, as shared work goes to the first
+// due scene) the stages the views share, run once for all of them.
+Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
+                                                const SceneCounters& sums, std::uint64_t rss) {
+  StepRecord r = s.record;
+  r.trace_ms = s.trace_ms[v];
+  if (v > 0) {
+    r.check_ms = r.ingest_ms = r.bvh_ms = r.color_ms = 0;
+    r.bvh_update = "none";
+  }
+  render::Framebuffer& image = s.images[v];
+  if (comm_.size > 1) {
+    const render::Stopwatch watch;
+    const render::CompositeOptions options{.root = config_.output.writer_rank};
+    if (int rc = render::composite(image, comm_.comm, options); rc != MPI_SUCCESS) {
+      return {StatusCode::mpi_error,
+              "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
+    }
+    r.composite_ms = watch.ms();
+  }
+  if (!is_writer()) return Status::success();
+  r.tets = sums.tets;
+  r.kept_tets = sums.kept_tets;
+  r.skipped_tets = sums.skipped_tets;
+  r.bvh_bytes = sums.bytes;
+  r.peak_rss_bytes = rss;
+  r.rays = static_cast<std::uint64_t>(image.pixel_count()) * static_cast<std::uint64_t>(comm_.size);
+  ImageJob job;
+  job.image = std::move(image);
+  std::copy(std::begin(s.config.background), std::end(s.config.background), job.background);
+  job.record = r;
+  job.annotations = annotations_for(s.config, r, s.colormap, static_cast<float>(s.color_range.lo),
+                                    static_cast<float>(s.color_range.hi));
+  // The viewer page goes with the run's first image, not at create: creating writes only what
+  // must exist before any step (folders, table headers), so a nearly full disk fails at an image.
+  if (!viewer_page_sent_ && config_.output.cinema) {
+    for (const config::Scene& scene : config_.scenes) job.viewer_page_scenes.push_back(scene.name);
+    viewer_page_sent_ = true;
+  }
+  if (s.config.orbit.enabled) {
+    job.view = static_cast<int>(v);
+    job.phi = s.views[v].phi_deg;
+    job.theta = s.views[v].theta_deg;
+  }
+  writer_->submit(std::move(job));
   return Status::success();
 }
 
@@ -484,7 +524,7 @@ void Adaptor::Impl::print_progress(std::int64_t step, double time, double blocke
   int rendered = 0;
   for (const SceneState& s : scenes_) {
     if (!s.due) continue;
-    trace_ms += s.record.trace_ms;
+    for (double ms : s.trace_ms) trace_ms += ms;
     ++rendered;
   }
   std::printf("tetray: step %lld t=%s: %d scene(s), bvh %s, trace %.1f ms, blocked %.1f ms\n",

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "cell_tets.hpp"
+
+#include "camera_path.hpp"
 #include "collective.hpp"
 #include "config.hpp"
 #include "field_volume.hpp"
@@ -43,16 +45,19 @@ class Adaptor::Impl {
 
  private:
   struct SceneState {
-    SceneState(const config::Scene& scene) : config(scene), clock(scene.trigger) {}
+    SceneState(const config::Scene& scene)
+        : config(scene), clock(scene.trigger), views(orbit_views(scene.orbit)) {}
 
     config::Scene config;
     TriggerClock clock;
     std::size_t volume = 0;                      // index into volumes_
     const render::Colormap* colormap = nullptr;  // null without color_by
     bool due = false;                            // this step; cleared when the scene is skipped
-    bool skipped_last = false;  // at its last due step: its inputs are checked again
-    render::ValueRange color_range;
-    render::Framebuffer image;
+    bool skipped_last = false;                // at its last due step: its inputs are checked again
+    render::ValueRange color_range;           // of the colormap, this step
+    std::vector<View> views;                  // one without an orbit
+    std::vector<render::Framebuffer> images;  // per view
+    std::vector<double> trace_ms;             // per view
     StepRecord record;
   };
 
@@ -77,6 +82,8 @@ class Adaptor::Impl {
   Status trace_scenes(std::span<const FieldView> fields);
   Status write_rank_images();
   Status composite_and_submit();
+  Status composite_and_submit_view(SceneState& s, std::size_t v, const SceneCounters& sums,
+                                   std::uint64_t rss);
 
   Status prepare_outputs_on_this_rank();
   bool is_writer() const { return comm_.rank == config_.output.writer_rank; }
@@ -124,6 +131,7 @@ class Adaptor::Impl {
   // the writer): reported at the next agreement, with the writer's errors, so that every rank
   // returns the same status from each call.
   Status pending_;
+  bool viewer_page_sent_ = false;  // index.html, with the writer rank's first image
   bool started_ = false;
   bool finalized_ = false;
 };

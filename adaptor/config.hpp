@@ -4,12 +4,15 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "render/image/image_write.hpp"
 #include "render/image/movie_writer.hpp"
+
+#include "render/annotate/font.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
@@ -48,6 +51,24 @@ struct ColorRange {
   float lo = 0, hi = 1;
 };
 
+// Drawn on the written image (render/annotate); the font is opened when the config is read and
+// null when nothing is to be drawn.
+struct Annotations {
+  bool colorbar = false;  // the colormap with the color_by field's name and ticks
+  bool time = false;      // a caption: scene name, step, simulated time
+  std::string title;      // empty: none
+  std::shared_ptr<const render::Font> font;
+};
+
+// The views of a scene at each rendered step: its camera orbited about look_at by every azimuth
+// (Cinema's phi: about the camera's up vector) and elevation (theta: towards up), in degrees.
+// Without an `orbit` key, the one view is the camera as given.
+struct Orbit {
+  bool enabled = false;
+  std::vector<double> azimuth_deg{0};
+  std::vector<double> elevation_deg{0};
+};
+
 struct Scene {
   std::string name;
   std::string field;
@@ -60,6 +81,8 @@ struct Scene {
   float background[4] = {0, 0, 0, 0};  // RGBA, put under the image (alpha 0: transparent)
   float ambient = 0.15f;               // of the headlight (the only light type)
   Trigger trigger{};
+  Annotations annotations{};
+  Orbit orbit{};
 };
 
 struct Output {

@@ -8,6 +8,10 @@
 #include <sstream>
 
 #include "config_output.hpp"
+
+#include "camera_path.hpp"
+#include "config_annotations.hpp"
+#include "config_views.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
@@ -284,7 +288,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
                   const Trigger& default_trigger) {
   r.allow_keys(node, key,
                {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
-                "camera", "image", "background", "lights", "trigger"});
+                "camera", "image", "background", "lights", "trigger", "annotations", "orbit"});
   Scene s;
   for (const char* k : {"name", "field", "isovalues"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -302,16 +306,23 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   s.camera.auto_fit = s.camera.auto_fit || !node["camera"];
   if (node["background"]) parse_background(r, node["background"], child_key(key, "background"), s);
   if (node["lights"]) parse_lights(r, node["lights"], child_key(key, "lights"), s);
+  if (node["annotations"]) {
+    s.annotations = parse_annotations(r, node["annotations"], child_key(key, "annotations"), s);
+  }
+  if (node["orbit"]) s.orbit = parse_orbit(r, node["orbit"], child_key(key, "orbit"), s);
   s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
                               : default_trigger;
   return s;
 }
 
-// Every scene keeps its own image: together they must stay within kMaxTotalPixels.
+// Every scene keeps its own image per view: together they must stay within kMaxTotalPixels.
 void check_total_pixels(const YamlReader& r, const YAML::Node& node,
                         const std::vector<Scene>& scenes) {
   double pixels = 0;
-  for (const Scene& s : scenes) pixels += static_cast<double>(s.width) * s.height;
+  for (const Scene& s : scenes) {
+    pixels +=
+        static_cast<double>(s.width) * s.height * static_cast<double>(orbit_views(s.orbit).size());
+  }
   if (pixels <= static_cast<double>(kMaxTotalPixels)) return;
   r.fail(node, "scenes",
          "the scenes' images hold " + std::to_string(static_cast<std::int64_t>(pixels)) +

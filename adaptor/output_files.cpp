@@ -9,23 +9,30 @@
 #include "line_file.hpp"
 #include "render/core/stopwatch.hpp"
 #include "render/image/image_write.hpp"
+#include "viewer_files.hpp"
 
 namespace tetray {
 namespace {
 
+// Cinema spec D: the parameter columns, then the files of each row (FILE columns).
+constexpr const char* kCinemaParameters = "time,phi,theta,scene,step";
+constexpr std::size_t kCinemaParameterCount = 5;
+
 std::string cinema_header(const config::Output& output) {
-  std::string header = "step,time";
+  std::string header = kCinemaParameters;
   if (output.png) header += ",FILE";
   if (output.exr) header += output.png ? ",FILE_exr" : ",FILE";
   return header;
 }
 
-std::string cinema_row(const config::Output& output, const StepRecord& r) {
-  std::string row = std::to_string(r.step) + ',' + time_text(r.time);
+std::string cinema_row(const config::Output& output, const ImageJob& job) {
+  const StepRecord& r = job.record;
+  std::string row = time_text(r.time) + ',' + time_text(job.phi) + ',' + time_text(job.theta) +
+                    ',' + r.scene + ',' + std::to_string(r.step);
   // Files relative to the .cdb directory.
   const std::string dir = "..";
-  if (output.png) row += ',' + image_path(dir, r.scene, r.step, "png");
-  if (output.exr) row += ',' + image_path(dir, r.scene, r.step, "exr");
+  if (output.png) row += ',' + image_path(dir, r.scene, r.step, "png", job.view);
+  if (output.exr) row += ',' + image_path(dir, r.scene, r.step, "exr", job.view);
   return row;
 }
 
@@ -80,6 +87,18 @@ bool is_numbered_name(std::string_view name, std::string_view prefix, std::strin
   return !step.empty() && step.find_first_not_of("0123456789") == std::string_view::npos;
 }
 
+// Whether `name` is an image of a scene's orbit: `<prefix><step>_view<digits><extension>`.
+bool is_view_image_name(std::string_view name, std::string_view prefix,
+                        std::string_view extension) {
+  if (!name.ends_with(extension)) return false;
+  const std::string_view stem = name.substr(0, name.size() - extension.size());
+  const std::size_t view = stem.rfind("_view");
+  if (view == std::string_view::npos) return false;
+  const std::string_view digits = stem.substr(view + 5);
+  return !digits.empty() && digits.find_first_not_of("0123456789") == std::string_view::npos &&
+         is_numbered_name(stem.substr(0, view), prefix, "");
+}
+
 using NamePredicate = std::function<bool(const std::string&)>;
 
 // Temporary files of a killed earlier run, only those of the files this run writes in `dir`.
@@ -103,12 +122,12 @@ std::vector<std::string> split_cells(const std::string& row) {
   return cells;
 }
 
-// A Cinema row with the header's column count whose every image (the columns after step and
-// time, relative to the .cdb folder) is a file on disk.
+// A Cinema row with the header's column count whose every image (the columns after the
+// parameters, relative to the .cdb folder) is a file on disk.
 bool lists_images_on_disk(const fs::path& cdb_dir, const std::string& row, std::size_t columns) {
   const std::vector<std::string> cells = split_cells(row);
   if (cells.size() != columns) return false;
-  for (std::size_t c = 2; c < cells.size(); ++c) {
+  for (std::size_t c = kCinemaParameterCount; c < cells.size(); ++c) {
     std::error_code ec;
     if (!fs::is_regular_file(fs::symlink_status(cdb_dir / cells[c], ec))) return false;
   }
@@ -141,42 +160,57 @@ std::string prepare_scene_outputs(const config::Output& output, const std::strin
   }
   const std::string prefix = scene + '_';
   const auto is_image = [&](const std::string& name) {
-    return is_numbered_name(name, prefix, ".png") || is_numbered_name(name, prefix, ".exr");
+    for (const char* extension : {".png", ".exr"}) {
+      if (is_numbered_name(name, prefix, extension) ||
+          is_view_image_name(name, prefix, extension)) {
+        return true;
+      }
+    }
+    return false;
   };
   const std::string table = cinema_path(output.directory, scene);
+  const std::string script = cinema_script_path(output.directory, scene);
   if (auto e = remove_stale_temporaries_in(images, is_image); !e.empty()) return e;
-  if (auto e = remove_stale_temporaries_in(cdb, named_as(table)); !e.empty()) return e;
+  const auto is_table = [&](const std::string& n) {
+    return named_as(table)(n) || named_as(script)(n);
+  };
+  if (auto e = remove_stale_temporaries_in(cdb, is_table); !e.empty()) return e;
   if (!output.cinema) return {};
   const std::string header = cinema_header(output);
   const std::size_t columns = split_cells(header).size();
-  return reopen_table(table, header, [&](const std::string& row) {
+  const std::string reopened = reopen_table(table, header, [&](const std::string& row) {
     return lists_images_on_disk(cdb, row, columns);
   });
+  return reopened.empty() ? write_cinema_script(output.directory, scene) : reopened;
 }
 
-// Whether an image of this step is already on disk: a step rendered again, by this run or an
-// earlier one, whose Cinema row is to be replaced rather than listed twice.
-bool rendered_before(const config::Output& output, const StepRecord& r) {
+// Whether an image of this step and view is already on disk: a step rendered again, by this run
+// or an earlier one, whose Cinema row is to be replaced rather than listed twice.
+bool rendered_before(const config::Output& output, const ImageJob& job) {
+  const StepRecord& r = job.record;
   std::error_code ec;
   for (const char* format : {"exr", "png"}) {
     const bool wanted = format[0] == 'e' ? output.exr : output.png;
-    const fs::path image = image_path(output.directory, r.scene, r.step, format);
+    const fs::path image = image_path(output.directory, r.scene, r.step, format, job.view);
     if (wanted && fs::exists(fs::symlink_status(image, ec))) return true;
   }
   return false;
 }
 
-// The table without its rows of `row`'s step, then `row`, replaced atomically. Costs the table's
-// size, paid only for a step rendered again: 1-3 ms for a 5,000-row table (340 kB) on ext4, small
-// next to encoding the image, since the table holds one short row per image.
+// The table without its rows of `row`'s image (its first file), then `row`, replaced atomically.
+// Costs the table's size, paid only for a step rendered again: 1-3 ms for a 5,000-row table (340
+// kB) on ext4, small next to encoding the image, since the table holds one short row per image.
 std::string replace_row(const std::string& path, const std::string& row) {
   const FileLines table = read_complete_lines(path);
   if (!table.error.empty()) return table.error;
   if (table.lines.empty()) return "cannot update '" + path + "': its header is missing";
-  const std::string step = row.substr(0, row.find(',') + 1);
+  const std::string image = split_cells(row).at(kCinemaParameterCount);
   std::vector<std::string> lines{table.lines.front()};
   for (std::size_t k = 1; k < table.lines.size(); ++k) {
-    if (!table.lines[k].starts_with(step)) lines.push_back(table.lines[k]);
+    const std::vector<std::string> cells = split_cells(table.lines[k]);
+    if (cells.size() <= kCinemaParameterCount || cells[kCinemaParameterCount] != image) {
+      lines.push_back(table.lines[k]);
+    }
   }
   lines.push_back(row);
   return replace_lines(path, lines);
@@ -185,8 +219,10 @@ std::string replace_row(const std::string& path, const std::string& row) {
 }  // namespace
 
 std::string image_path(const std::string& directory, const std::string& scene, std::int64_t step,
-                       const char* extension) {
-  return directory + '/' + scene + '/' + scene + '_' + padded(step, 6) + '.' + extension;
+                       const char* extension, int view) {
+  const std::string name = scene + '_' + padded(step, 6);
+  return directory + '/' + scene + '/' + name + (view < 0 ? "" : "_view" + padded(view, 3)) + '.' +
+         extension;
 }
 
 std::string rank_image_path(const std::string& directory, const std::string& scene,
@@ -207,7 +243,9 @@ std::string prepare_outputs(const config::Output& output,
     if (auto e = prepare_scene_outputs(output, s.name); !e.empty()) return e;
   }
   const std::string log = log_path(output.directory);
-  if (auto e = remove_stale_temporaries_in(output.directory, named_as(log)); !e.empty()) return e;
+  const std::string page = viewer_page_path(output.directory);
+  const auto is_own = [&](const std::string& n) { return named_as(log)(n) || named_as(page)(n); };
+  if (auto e = remove_stale_temporaries_in(output.directory, is_own); !e.empty()) return e;
   return reopen_table(log, log_header(), [](const std::string&) { return true; });
 }
 
@@ -235,8 +273,11 @@ std::string write_rank_image(const config::Output& output, const std::string& sc
 
 std::string write_image_job(const config::Output& output, ImageJob& job) {
   StepRecord& r = job.record;
-  const bool listed = output.cinema && rendered_before(output, r);
+  const bool listed = output.cinema && rendered_before(output, job);
   put_background_under(job.image, job.background);
+  const render::Stopwatch annotating;  // counted as encoding: it prepares the encoded pixels
+  render::draw_annotations(job.image, job.annotations, job.background);
+  r.encode_ms += annotating.ms();
   r.hits = count_hits(job.image);
   const render::Stopwatch encoding;
   const render::EncodedImages images =
@@ -249,20 +290,23 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
     if (!encoded.ok()) return encoded.error;
     const render::Stopwatch writing;
     const auto written = render::write_file_atomically(
-        image_path(output.directory, r.scene, r.step, format), encoded.bytes);
+        image_path(output.directory, r.scene, r.step, format, job.view), encoded.bytes);
     r.write_ms += writing.ms();
     if (!written.ok) return written.message;
   }
   const render::Stopwatch appending;
   if (output.cinema) {
     const std::string table = cinema_path(output.directory, r.scene);
-    const std::string row = cinema_row(output, r);
+    const std::string row = cinema_row(output, job);
     if (auto e = listed ? replace_row(table, row) : append_line(table, row); !e.empty()) {
       return e;
     }
+    if (auto e = write_cinema_script(output.directory, r.scene); !e.empty()) return e;
   }
   r.write_ms += appending.ms();
-  return append_line(log_path(output.directory), log_row(r));
+  if (auto e = append_line(log_path(output.directory), log_row(r)); !e.empty()) return e;
+  if (job.viewer_page_scenes.empty()) return {};
+  return write_viewer_page(output.directory, job.viewer_page_scenes);
 }
 
 }  // namespace tetray

@@ -1,7 +1,8 @@
 // The files of docs/architecture.md §3 on the writer rank: images
-// `<dir>/<scene>/<scene>_<step>.exr|png` (written atomically by render/image), the Cinema
-// database `<dir>/<scene>.cdb/data.csv` and the timing log `<dir>/tetray_log.csv`; with
-// per_rank_images, every rank's own image
+// `<dir>/<scene>/<scene>_<step>[_view<view>].exr|png` (written atomically by render/image), the
+// Cinema database (spec D: time, phi, theta, scene, step, then the files)
+// `<dir>/<scene>.cdb/data.csv` and the timing log `<dir>/tetray_log.csv`; with per_rank_images,
+// every rank's own image
 // `<dir>/<scene>/ranks/<scene>_<step>_rank<rank>.png`. Every function returns an error message
 // (empty on success); a failed append leaves the file as it was, so nothing already written is
 // damaged, and a run killed at any moment leaves whole images and whole lines (line_file.hpp).
@@ -14,13 +15,16 @@
 #include <vector>
 
 #include "config.hpp"
+#include "render/annotate/annotate.hpp"
 #include "render/core/framebuffer.hpp"
 #include "step_record.hpp"
 
 namespace tetray {
 
+// `view` is the index of an orbit's view (`<scene>_<step>_view<3 digits>`); -1 for a scene
+// without an orbit.
 std::string image_path(const std::string& directory, const std::string& scene, std::int64_t step,
-                       const char* extension);
+                       const char* extension, int view = -1);
 std::string rank_image_path(const std::string& directory, const std::string& scene,
                             std::int64_t step, int rank);
 std::string log_path(const std::string& directory);
@@ -48,10 +52,18 @@ struct ImageJob {
   render::Framebuffer image;
   float background[4] = {0, 0, 0, 0};
   StepRecord record;
+  render::Annotations annotations;  // empty: the image is written as composited
+  // The view of an orbit: its index (-1 without an orbit) and angles in degrees (Cinema's phi
+  // and theta columns).
+  int view = -1;
+  double phi = 0, theta = 0;
+  // Non-empty for the run's first image: index.html is written for these scenes, after the
+  // image and its rows (so an image's error is the one reported).
+  std::vector<std::string> viewer_page_scenes;
 };
 
-// Background, image files, Cinema row, log row; fills the record's writer timings and hits. A
-// step whose image is already on disk (rendered again) replaces its Cinema row instead of
+// Background, annotations, image files, Cinema row, log row; fills the record's writer timings and
+// hits. A step whose image is already on disk (rendered again) replaces its Cinema row instead of
 // adding a second one.
 std::string write_image_job(const config::Output& output, ImageJob& job);
 

@@ -13,6 +13,7 @@ packages=(
   libjsoncpp-dev clang libclang-rt-14-dev libdeflate-dev
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
+  libfreetype-dev fonts-dejavu-core chromium
 )
 
 missing=()

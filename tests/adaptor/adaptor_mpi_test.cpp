@@ -1,6 +1,7 @@
 // The adaptor across ranks (run under mpirun -np 2): an empty rank, a mesh split over the ranks
 // giving the same image as one rank, one rank's bad input reaching every rank as an error
-// instead of a hang, a writer rank other than 0, and per-rank debugging images.
+// instead of a hang, a writer rank other than 0, and per-rank debugging images; an orbit's views
+// composited one by one.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -22,10 +23,11 @@ namespace fs = std::filesystem;
 
 std::unique_ptr<Adaptor> make(MPI_Comm comm, const std::string& dir,
                               const std::string& output_keys = "",
-                              const std::string& top_lines = "") {
+                              const std::string& top_lines = "",
+                              const std::string& scene_lines = "") {
   Status status;
   auto a = Adaptor::create_from_yaml(
-      comm, plane_config(dir, ", formats: [png]" + output_keys, top_lines), status);
+      comm, plane_config(dir, ", formats: [png]" + output_keys, top_lines, scene_lines), status);
   EXPECT_TRUE(status.ok()) << status.message;
   return a;
 }
@@ -97,12 +99,16 @@ TEST(AdaptorMpi, EmptyRankRendersTheOthersTets) {
   EXPECT_EQ(cell(log, 1, "tets"), std::to_string(scene.mesh.tet_count()));
 }
 
-TEST(AdaptorMpi, SplitMeshGivesTheOneRankImage) {
-  const SharedDir shared("split");
+// The scene (with `scene_lines`) rendered by rank 0 alone and by every rank on its share of the
+// tets, with global ids: each of `images` must be the same file both times.
+void expect_split_mesh_gives_the_one_rank_images(const std::string& name,
+                                                 const std::string& scene_lines,
+                                                 const std::vector<std::string>& images) {
+  const SharedDir shared(name);
   const std::string& dir = shared.path();
   const PlaneScene scene = make_plane_scene(6);
   if (rank() == 0) {
-    auto single = make(MPI_COMM_SELF, dir + "/one");
+    auto single = make(MPI_COMM_SELF, dir + "/one", "", "", scene_lines);
     ASSERT_TRUE(single);
     ASSERT_TRUE(single->execute(0, 0, scene.view(), scene.fields()).ok());
     ASSERT_TRUE(single->finalize().ok());
@@ -118,15 +124,29 @@ TEST(AdaptorMpi, SplitMeshGivesTheOneRankImage) {
   view.tets = TetsView::of(
       std::span<const std::int64_t>(scene.mesh.tets).subspan(4 * begin, 4 * (end - begin)));
   view.tets.global_ids = ids.data();
-  auto split = make(MPI_COMM_WORLD, dir + "/split");
+  auto split = make(MPI_COMM_WORLD, dir + "/split", "", "", scene_lines);
   ASSERT_TRUE(split);
   const Status status = split->execute(0, 0, view, scene.fields());
   ASSERT_TRUE(status.ok()) << status.message;
   ASSERT_TRUE(split->finalize().ok());
   if (rank() != 0) return;
-  const std::string one = slurp(dir + "/one/plane/plane_000000.png");
-  ASSERT_FALSE(one.empty());
-  EXPECT_EQ(one, slurp(dir + "/split/plane/plane_000000.png"));
+  for (const std::string& image : images) {
+    const std::string one = slurp(dir + "/one/plane/" + image);
+    ASSERT_FALSE(one.empty()) << image;
+    EXPECT_EQ(one, slurp(dir + "/split/plane/" + image)) << image;
+  }
+}
+
+TEST(AdaptorMpi, SplitMeshGivesTheOneRankImage) {
+  expect_split_mesh_gives_the_one_rank_images("split", "", {"plane_000000.png"});
+}
+
+// Every view of an orbit is composited on its own, in the same order on every rank.
+TEST(AdaptorMpi, SplitMeshGivesTheOneRankImageOfEveryView) {
+  expect_split_mesh_gives_the_one_rank_images(
+      "split_views", "    orbit: {azimuth: [0, 35], elevation: [0, 25]}\n",
+      {"plane_000000_view000.png", "plane_000000_view001.png", "plane_000000_view002.png",
+       "plane_000000_view003.png"});
 }
 
 TEST(AdaptorMpi, OneRanksBadInputIsEveryRanksError) {

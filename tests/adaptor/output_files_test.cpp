@@ -49,7 +49,7 @@ class OutputFiles : public ::testing::Test {
   std::vector<std::string> cinema_steps() const {
     std::vector<std::string> steps;
     const auto rows = read_csv(cinema().string());
-    for (std::size_t r = 1; r < rows.size(); ++r) steps.push_back(rows[r].at(0));
+    for (std::size_t r = 1; r < rows.size(); ++r) steps.push_back(cell(rows, r, "step"));
     return steps;
   }
 
@@ -104,7 +104,8 @@ TEST_F(OutputFiles, TableOfOtherFormatsStartsAfresh) {
   ASSERT_TRUE(run({0, 1}, ", formats: [png]").ok());
   ASSERT_TRUE(run({2}).ok());
   const auto rows = read_csv(cinema().string());
-  EXPECT_EQ(rows.at(0), (std::vector<std::string>{"step", "time", "FILE", "FILE_exr"}));
+  EXPECT_EQ(rows.at(0), (std::vector<std::string>{"time", "phi", "theta", "scene", "step", "FILE",
+                                                  "FILE_exr"}));
   EXPECT_EQ(cinema_steps(), (std::vector<std::string>{"2"}));
 }
 
