@@ -44,7 +44,8 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     : comm_(comm),
       config_(std::move(config)),
       threads_(config_.threads > 0 ? config_.threads : default_thread_count()),
-      arena_(threads_) {
+      arena_(threads_),
+      probes_(config_.probes) {
   for (const config::Scene& s : config_.scenes) {
     SceneState state(s);
     const auto same_field = [&](const FieldVolume& v) { return v.field() == s.field; };
@@ -77,6 +78,7 @@ Status Adaptor::Impl::prepare_outputs_on_this_rank() {
   const config::Output& output = config_.output;
   std::string error;
   if (is_writer()) error = prepare_outputs(output, config_.scenes);
+  if (error.empty() && is_writer()) error = probes_.prepare(output.directory);
   if (error.empty() && output.per_rank_images) {
     error = prepare_rank_image_directories(output, config_.scenes, comm_.rank);
   }
@@ -173,6 +175,14 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
     if (s.due) s.clock.mark_rendered(time);
   }
   pending_ = guarded("composite", [&] { return composite_and_submit(); });
+  if (!probes_.empty()) {
+    // Located in the first due scene's volume, which this step brought up to date.
+    const SceneState* first = first_due_scene();
+    std::string error = probes_.sample(comm_, config_.output.writer_rank,
+                                       first ? &volumes_[first->volume] : nullptr, fields, step,
+                                       time, config_.output.directory);
+    if (pending_.ok() && !error.empty()) pending_ = {StatusCode::io_error, std::move(error)};
+  }
   return skipped_status();
 }
 

@@ -13,6 +13,7 @@
 #include "config.hpp"
 #include "field_volume.hpp"
 #include "image_writer.hpp"
+#include "probes.hpp"
 #include "render/composite/global_reduce.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/colormap.hpp"
@@ -118,6 +119,7 @@ class Adaptor::Impl {
   int threads_ = 1;
   tbb::task_arena arena_;
   std::unique_ptr<ImageWriter> writer_;  // on the writer rank only
+  ProbeSampler probes_;
   // A failure of this rank after the step's last agreement (compositing, handing the image to
   // the writer): reported at the next agreement, with the writer's errors, so that every rank
   // returns the same status from each call.

@@ -72,6 +72,14 @@ struct Output {
   bool per_rank_images = false;  // each rank also writes its own layer (debugging)
 };
 
+// Points where fields are sampled at every rendered step, independent of the scenes: the
+// points given and the lines' samples, in the order of the config (adaptor/probes.hpp).
+struct ProbeSet {
+  std::string name;                  // names the CSV file
+  std::vector<std::string> fields;   // sampled at each point
+  std::vector<render::Vec3d> points;
+};
+
 struct Config {
   std::string source;  // file name, or "<yaml string>", for messages
   Output output{};
@@ -79,6 +87,7 @@ struct Config {
   render::UpdatePolicy bvh{};
   render::NonFinitePolicy nonfinite = render::NonFinitePolicy::error;
   int threads = 0;  // the renderer's threads on each rank; 0: default_thread_count()
+  std::vector<ProbeSet> probes;
 };
 
 }  // namespace tetray::config

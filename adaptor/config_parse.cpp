@@ -9,6 +9,7 @@
 
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
+#include "config_probes.hpp"
 #include "yaml_reader.hpp"
 
 namespace tetray::config {
@@ -323,7 +324,8 @@ void check_total_pixels(const YamlReader& r, const YAML::Node& node,
 
 Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source,
                   int rank_count) {
-  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite", "threads"});
+  r.allow_keys(root, "",
+               {"output", "trigger", "scenes", "bvh", "nonfinite", "threads", "probes"});
   Config config;
   config.source = source;
   if (root["output"]) config.output = parse_output(r, root["output"], rank_count);
@@ -358,6 +360,7 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
     }
   }
   check_total_pixels(r, scenes, config.scenes);
+  if (root["probes"]) config.probes = parse_probes(r, root["probes"]);
   return config;
 }
 
