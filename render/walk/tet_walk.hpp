@@ -29,6 +29,7 @@ struct WalkSegment {
   std::uint32_t tet;
   double t_in, t_out;
   double f_in, f_out;
+  bool entered;  // the first tet after entering the domain through a boundary face
 };
 
 struct WalkCounters {
@@ -83,6 +84,7 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
     FaceCrossing in = entry->crossing;
     std::uint32_t tet = entry->tet;
     std::uint32_t previous = kBoundaryFace;
+    bool entered = true;
     for (;;) {
       if (++steps > step_bound) {
         ++counters.lost_rays;
@@ -99,7 +101,8 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
       face.point[k] = p3;
       FaceCrossing out = cross_face(mesh.volume, frame, face);
       out.t = std::max(out.t, in.t);
-      if (!visit(WalkSegment{tet, in.t, out.t, in.f, out.f}) || out.t >= t_max) return;
+      if (!visit(WalkSegment{tet, in.t, out.t, in.f, out.f, entered}) || out.t >= t_max) return;
+      entered = false;
       if (next == kBoundaryFace) {
         // Rounding may put the next entry a few ulps before this exit.
         t_from = out.t - 1e-9 * (1.0 + std::abs(out.t));
