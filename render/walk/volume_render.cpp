@@ -17,7 +17,8 @@ struct RowOutput {
   VolumeRenderStats stats;
 };
 
-// What one ray gathers: a fragment per run of tets between a boundary entry and the next exit.
+// What one ray gathers: a fragment per run of tets between a boundary entry and the next exit,
+// from the first tet with any opacity.
 class RayGatherer {
  public:
   RayGatherer(const TetVolume& volume, const VolumeRenderOptions& options,
@@ -34,13 +35,20 @@ class RayGatherer {
     if (s.entered) {
       close_run();
       open_ = true;
+      visible_ = false;
       run_ = {};
       fragment_ = {};
+    }
+    const Gathered g =
+        integrate_segment(options_.transfer, breakpoints_, s.t_out - s.t_in, s.f_in, s.f_out);
+    // The fragment starts where the ray first meets opacity, which does not depend on where
+    // a rank's sub-domain begins.
+    if (!visible_ && g.transmittance < 1) {
+      visible_ = true;
       fragment_.depth_in = static_cast<float>(s.t_in * depth_per_t_);
       fragment_.key = volume_.tet_ids[s.tet];
     }
-    run_.then(
-        integrate_segment(options_.transfer, breakpoints_, s.t_out - s.t_in, s.f_in, s.f_out));
+    run_.then(g);
     fragment_.depth_out = static_cast<float>(s.t_out * depth_per_t_);
     const double opacity = 1.0 - transmittance_ * run_.transmittance;
     if (opacity < options_.termination) return true;
@@ -55,7 +63,7 @@ class RayGatherer {
     for (int c = 0; c < 3; ++c) fragment_.rgba[c] = static_cast<float>(run_.color[c]);
     fragment_.rgba[3] = static_cast<float>(1.0 - run_.transmittance);
     transmittance_ *= run_.transmittance;
-    if (fragment_.rgba[3] > 0) out_.push_back(fragment_);
+    if (visible_) out_.push_back(fragment_);
   }
 
   bool terminated() const { return terminated_; }
@@ -66,7 +74,7 @@ class RayGatherer {
   const std::vector<double>& breakpoints_;
   double depth_per_t_;
   std::vector<Fragment>& out_;
-  bool open_ = false, terminated_ = false;
+  bool open_ = false, visible_ = false, terminated_ = false;
   Gathered run_;
   Fragment fragment_;
   double transmittance_ = 1;  // of the runs before this one
