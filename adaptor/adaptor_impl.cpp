@@ -10,6 +10,7 @@
 #include "input_views.hpp"
 #include "output_files.hpp"
 #include "render/composite/composite.hpp"
+#include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
@@ -56,6 +57,7 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     scenes_.push_back(std::move(state));
   }
   skipped_.assign(volumes_.size(), 0);
+  walks_.resize(volumes_.size());
   skips_.resize(scenes_.size());
   ranges_.scenes.resize(scenes_.size());
 }
@@ -344,6 +346,7 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
     const render::UpdateResult result = volume.update(inputs, epochs_, config_.bvh, origin_);
+    walks_[v].after_update(volume.volume(), result.kind);
     first->record.bvh_ms = watch.ms();
     first->record.bvh_update = render::to_string(result.kind);
     strongest = std::max(strongest, result.kind);
@@ -365,9 +368,11 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
         ranges.box.axis[a].include(volume.volume().origin[a] + b.hi[a]);
       }
     }
-    if (s.colormap != nullptr && s.config.color_range.automatic) {
+    const bool volume_range = s.config.volume && s.config.volume->range.automatic;
+    if ((s.colormap != nullptr && s.config.color_range.automatic) || volume_range) {
       const render::Stopwatch watch;
-      ranges.color = local_field_range(field_or_empty(fields, s.config.color_by));
+      const std::string& colored = volume_range ? s.config.field : s.config.color_by;
+      ranges.color = local_field_range(field_or_empty(fields, colored));
       s.record.color_ms += watch.ms();
     }
   }
@@ -379,6 +384,15 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
     FieldVolume& volume = volumes_[s.volume];
+    if (s.config.volume) {
+      const render::Stopwatch watch;
+      s.fragments = render::render_volume(
+          volume.volume(), walks_[s.volume].get(volume.volume()), camera_for(s, ranges_.scenes[k]),
+          volume_options(*s.config.volume, ranges_.scenes[k].color));
+      s.image = render::resolve(s.fragments);
+      s.record.trace_ms = watch.ms();
+      continue;
+    }
     render::TraceOptions options;
     options.ambient = s.config.ambient;
     if (s.colormap != nullptr) {
@@ -450,7 +464,10 @@ Status Adaptor::Impl::composite_and_submit() {
     if (comm_.size > 1) {
       const render::Stopwatch watch;
       const render::CompositeOptions options{.root = writer};
-      if (int rc = render::composite(s.image, comm_.comm, options); rc != MPI_SUCCESS) {
+      const int rc = s.config.volume
+                         ? render::composite_fragments(s.fragments, comm_.comm, writer, s.image)
+                         : render::composite(s.image, comm_.comm, options);
+      if (rc != MPI_SUCCESS) {
         return {StatusCode::mpi_error,
                 "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
       }

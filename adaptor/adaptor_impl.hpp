@@ -21,6 +21,7 @@
 #include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 #include "trigger.hpp"
+#include "volume_scene.hpp"
 
 namespace tetray {
 
@@ -53,6 +54,7 @@ class Adaptor::Impl {
     bool skipped_last = false;  // at its last due step: its inputs are checked again
     render::ValueRange color_range;
     render::Framebuffer image;
+    render::FragmentImage fragments;  // a volume scene's, before compositing
     StepRecord record;
   };
 
@@ -91,6 +93,7 @@ class Adaptor::Impl {
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
+  std::vector<WalkCache> walks_;        // per volume, built for volume scenes only
   std::vector<std::uint64_t> skipped_;  // per volume, at its last check
   SceneSkips skips_;                    // per scene, this step
   ChangeEpochs epochs_{};

@@ -12,6 +12,7 @@
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "render/walk/transfer_function.hpp"
 
 namespace tetray::config {
 
@@ -46,6 +47,16 @@ struct ColorRange {
   float lo = 0, hi = 1;
 };
 
+// Direct volume rendering of the scene's field (adaptor/config_volume.cpp, docs/architecture.md
+// §8): a colormap over a value range and opacity points, per unit distance.
+struct VolumeSpec {
+  std::string colormap_name = "viridis";
+  ColorRange range{};                         // automatic: the field's global range each step
+  std::vector<render::OpacityPoint> opacity;  // ascending values
+  double unit_distance = 1;
+  double termination = 0.99;  // opacity that ends a ray; 1: no early termination
+};
+
 struct Scene {
   std::string name;
   std::string field;
@@ -58,6 +69,7 @@ struct Scene {
   float background[4] = {0, 0, 0, 0};  // RGBA, put under the image (alpha 0: transparent)
   float ambient = 0.15f;               // of the headlight (the only light type)
   Trigger trigger{};
+  std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
 };
 
 struct Output {
@@ -75,8 +87,8 @@ struct Output {
 // Points where fields are sampled at every rendered step, independent of the scenes: the
 // points given and the lines' samples, in the order of the config (adaptor/probes.hpp).
 struct ProbeSet {
-  std::string name;                  // names the CSV file
-  std::vector<std::string> fields;   // sampled at each point
+  std::string name;                 // names the CSV file
+  std::vector<std::string> fields;  // sampled at each point
   std::vector<render::Vec3d> points;
 };
 

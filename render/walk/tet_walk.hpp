@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "render/volume/tet_volume.hpp"
@@ -120,6 +121,17 @@ template <typename Layout>
 std::vector<WalkSegment> walk_segments(const WalkMesh<Layout>& mesh, const RayFrame& frame,
                                        double t_max, std::size_t max_segments,
                                        WalkCounters& counters);
+
+// Walks every pixel's ray of a frame (origin `eye` in local coordinates, directions from
+// `directions`, one per pixel) without doing anything in the tets: the cost of the walk alone,
+// for the benchmark. Parallel over pixels in the calling oneTBB arena.
+template <typename Layout>
+WalkCounters walk_rays(const WalkMesh<Layout>& mesh, Vec3d eye, std::span<const Vec3d> directions);
+
+extern template WalkCounters walk_rays<Tet20>(const WalkMesh<Tet20>&, Vec3d,
+                                              std::span<const Vec3d>);
+extern template WalkCounters walk_rays<Tet16>(const WalkMesh<Tet16>&, Vec3d,
+                                              std::span<const Vec3d>);
 
 extern template std::vector<WalkSegment> walk_segments<Tet20>(const WalkMesh<Tet20>&,
                                                               const RayFrame&, double, std::size_t,
