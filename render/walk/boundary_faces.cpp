@@ -51,7 +51,10 @@ void split(const TetVolume& volume, std::vector<BoundaryFace>& faces,
   split(volume, faces, nodes, children + 1, middle, last);
 }
 
-bool ray_hits_box(const RayFrame& frame, const BoundaryNode& node, double t_lo, double t_hi) {
+// Where the ray enters the node's box within [t_lo, t_hi]; NaN when it misses it (every
+// comparison with a miss is false).
+double box_entry(const RayFrame& frame, const BoundaryNode& node, double t_lo, double t_hi) {
+  constexpr double kMiss = std::numeric_limits<double>::quiet_NaN();
   for (int axis = 0; axis < 3; ++axis) {
     const double o = frame.origin[axis];
     const double d = frame.direction[axis];
@@ -59,16 +62,16 @@ bool ray_hits_box(const RayFrame& frame, const BoundaryNode& node, double t_lo, 
     const double pad = 1e-6 * (1.0 + std::max(std::abs(node.lo[axis]), std::abs(node.hi[axis])));
     const double lo = node.lo[axis] - pad, hi = node.hi[axis] + pad;
     if (d == 0) {
-      if (o < lo || o > hi) return false;
+      if (o < lo || o > hi) return kMiss;
       continue;
     }
     double t0 = (lo - o) / d, t1 = (hi - o) / d;
     if (t0 > t1) std::swap(t0, t1);
     t_lo = std::max(t_lo, t0);
     t_hi = std::min(t_hi, t1);
-    if (t_lo > t_hi) return false;
+    if (t_lo > t_hi) return kMiss;
   }
-  return true;
+  return t_lo;
 }
 
 // The face projected and ordered counter-clockwise around the ray, when the ray passes
@@ -162,10 +165,14 @@ std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces
   stack[top++] = 0;
   while (top > 0) {
     const BoundaryNode& node = boundary.nodes[stack[--top]];
-    if (!ray_hits_box(frame, node, t_from, t_best)) continue;
+    if (!(box_entry(frame, node, t_from, t_best) <= t_best)) continue;
     if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = node.first + 1;
+      // The nearer child last, so it is searched first and its hits prune the other.
+      const double near_first = box_entry(frame, boundary.nodes[node.first], t_from, t_best);
+      const double near_second = box_entry(frame, boundary.nodes[node.first + 1], t_from, t_best);
+      const bool second_nearer = near_second < near_first;
+      stack[top++] = node.first + (second_nearer ? 0 : 1);
+      stack[top++] = node.first + (second_nearer ? 1 : 0);
       continue;
     }
     for (std::uint32_t f = node.first; f < node.first + node.count; ++f) {
