@@ -11,6 +11,7 @@
 #include "input_views.hpp"
 #include "output_files.hpp"
 #include "render/composite/composite.hpp"
+#include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
@@ -45,7 +46,8 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     : comm_(comm),
       config_(std::move(config)),
       threads_(config_.threads > 0 ? config_.threads : default_thread_count()),
-      arena_(threads_) {
+      arena_(threads_),
+      probes_(config_.probes) {
   for (const config::Scene& s : config_.scenes) {
     SceneState state(s);
     const auto same_field = [&](const FieldVolume& v) { return v.field() == s.field; };
@@ -56,6 +58,7 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     scenes_.push_back(std::move(state));
   }
   skipped_.assign(volumes_.size(), 0);
+  walks_.resize(volumes_.size());
   skips_.resize(scenes_.size());
   ranges_.scenes.resize(scenes_.size());
 }
@@ -78,6 +81,7 @@ Status Adaptor::Impl::prepare_outputs_on_this_rank() {
   const config::Output& output = config_.output;
   std::string error;
   if (is_writer()) error = prepare_outputs(output, config_.scenes);
+  if (error.empty() && is_writer()) error = probes_.prepare(output.directory);
   if (error.empty() && output.per_rank_images) {
     error = prepare_rank_image_directories(output, config_.scenes, comm_.rank);
   }
@@ -182,6 +186,14 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
     if (s.due) s.clock.mark_rendered(time);
   }
   pending_ = guarded("composite", [&] { return composite_and_submit(); });
+  if (!probes_.empty()) {
+    // Located in the first due scene's volume, which this step brought up to date.
+    const SceneState* first = first_due_scene();
+    std::string error = probes_.sample(comm_, config_.output.writer_rank,
+                                       first ? &volumes_[first->volume] : nullptr, fields, step,
+                                       time, config_.output.directory);
+    if (pending_.ok() && !error.empty()) pending_ = {StatusCode::io_error, std::move(error)};
+  }
   return skipped_status();
 }
 
@@ -343,6 +355,7 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
     const render::UpdateResult result = volume.update(inputs, epochs_, config_.bvh, origin_);
+    walks_[v].after_update(volume.volume(), result.kind);
     first->record.bvh_ms = watch.ms();
     first->record.bvh_update = render::to_string(result.kind);
     strongest = std::max(strongest, result.kind);
@@ -364,9 +377,11 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
         ranges.box.axis[a].include(volume.volume().origin[a] + b.hi[a]);
       }
     }
-    if (s.colormap != nullptr && s.config.color_range.automatic) {
+    const bool volume_range = s.config.volume && s.config.volume->range.automatic;
+    if ((s.colormap != nullptr && s.config.color_range.automatic) || volume_range) {
       const render::Stopwatch watch;
-      ranges.color = local_field_range(field_or_empty(fields, s.config.color_by));
+      const std::string& colored = volume_range ? s.config.field : s.config.color_by;
+      ranges.color = local_field_range(field_or_empty(fields, colored));
       s.record.color_ms += watch.ms();
     }
   }
@@ -378,6 +393,15 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
     FieldVolume& volume = volumes_[s.volume];
+    if (s.config.volume) {
+      const render::Stopwatch watch;
+      s.fragments = render::render_volume(
+          volume.volume(), walks_[s.volume].get(volume.volume()), camera_for(s, ranges_.scenes[k]),
+          volume_options(*s.config.volume, ranges_.scenes[k].color));
+      s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
+      s.trace_ms.assign(1, watch.ms());
+      continue;
+    }
     render::TraceOptions options;
     options.ambient = s.config.ambient;
     if (s.colormap != nullptr) {
@@ -477,8 +501,11 @@ Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
   render::Framebuffer& image = s.images[v];
   if (comm_.size > 1) {
     const render::Stopwatch watch;
-    const render::CompositeOptions options{.root = config_.output.writer_rank};
-    if (int rc = render::composite(image, comm_.comm, options); rc != MPI_SUCCESS) {
+    const int writer = config_.output.writer_rank;
+    const int rc = s.config.volume
+                       ? render::composite_fragments(s.fragments, comm_.comm, writer, image)
+                       : render::composite(image, comm_.comm, {.root = writer});
+    if (rc != MPI_SUCCESS) {
       return {StatusCode::mpi_error,
               "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
     }

@@ -16,6 +16,7 @@
 #include "config.hpp"
 #include "field_volume.hpp"
 #include "image_writer.hpp"
+#include "probes.hpp"
 #include "render/composite/global_reduce.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/colormap.hpp"
@@ -23,6 +24,7 @@
 #include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 #include "trigger.hpp"
+#include "volume_scene.hpp"
 
 namespace tetray {
 
@@ -58,6 +60,7 @@ class Adaptor::Impl {
     std::vector<View> views;                  // one without an orbit
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
+    render::FragmentImage fragments;          // a volume scene's, before compositing
     StepRecord record;
   };
 
@@ -98,6 +101,7 @@ class Adaptor::Impl {
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
+  std::vector<WalkCache> walks_;        // per volume, built for volume scenes only
   std::vector<std::uint64_t> skipped_;  // per volume, at its last check
   SceneSkips skips_;                    // per scene, this step
   ChangeEpochs epochs_{};
@@ -127,6 +131,7 @@ class Adaptor::Impl {
   int threads_ = 1;
   tbb::task_arena arena_;
   std::unique_ptr<ImageWriter> writer_;  // on the writer rank only
+  ProbeSampler probes_;
   // A failure of this rank after the step's last agreement (compositing, handing the image to
   // the writer): reported at the next agreement, with the writer's errors, so that every rank
   // returns the same status from each call.

@@ -17,6 +17,7 @@
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "render/walk/transfer_function.hpp"
 
 namespace tetray::config {
 
@@ -69,6 +70,16 @@ struct Orbit {
   std::vector<double> elevation_deg{0};
 };
 
+// Direct volume rendering of the scene's field (adaptor/config_volume.cpp, docs/architecture.md
+// §8): a colormap over a value range and opacity points, per unit distance.
+struct VolumeSpec {
+  std::string colormap_name = "viridis";
+  ColorRange range{};                         // automatic: the field's global range each step
+  std::vector<render::OpacityPoint> opacity;  // ascending values
+  double unit_distance = 1;
+  double termination = 0.99;  // opacity that ends a ray; 1: no early termination
+};
+
 struct Scene {
   std::string name;
   std::string field;
@@ -83,6 +94,7 @@ struct Scene {
   Trigger trigger{};
   Annotations annotations{};
   Orbit orbit{};
+  std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
 };
 
 struct Output {
@@ -101,6 +113,14 @@ struct Output {
   bool per_rank_images = false;  // each rank also writes its own layer (debugging)
 };
 
+// Points where fields are sampled at every rendered step, independent of the scenes: the
+// points given and the lines' samples, in the order of the config (adaptor/probes.hpp).
+struct ProbeSet {
+  std::string name;                 // names the CSV file
+  std::vector<std::string> fields;  // sampled at each point
+  std::vector<render::Vec3d> points;
+};
+
 struct Config {
   std::string source;  // file name, or "<yaml string>", for messages
   Output output{};
@@ -108,6 +128,7 @@ struct Config {
   render::UpdatePolicy bvh{};
   render::NonFinitePolicy nonfinite = render::NonFinitePolicy::error;
   int threads = 0;  // the renderer's threads on each rank; 0: default_thread_count()
+  std::vector<ProbeSet> probes;
 };
 
 }  // namespace tetray::config

@@ -11,7 +11,9 @@
 
 #include "camera_path.hpp"
 #include "config_annotations.hpp"
+#include "config_probes.hpp"
 #include "config_views.hpp"
+#include "config_volume.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
@@ -286,11 +288,12 @@ bool valid_scene_name(const std::string& name) {
 
 Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
                   const Trigger& default_trigger) {
-  r.allow_keys(node, key,
-               {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
-                "camera", "image", "background", "lights", "trigger", "annotations", "orbit"});
+  r.allow_keys(
+      node, key,
+      {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range", "camera",
+       "image", "background", "lights", "trigger", "annotations", "orbit", "volume"});
   Scene s;
-  for (const char* k : {"name", "field", "isovalues"}) {
+  for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
   }
   s.name = r.string(node["name"], child_key(key, "name"));
@@ -299,8 +302,13 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
            "use only letters, digits, '_', '-' and '.' (it names files)");
   }
   s.field = r.string(node["field"], child_key(key, "field"));
-  parse_surfaces(r, node, key, s);
-  parse_coloring(r, node, key, s);
+  if (node["volume"]) {
+    parse_volume_scene(r, node, key, s);
+  } else {
+    if (!node["isovalues"]) r.fail(node, child_key(key, "isovalues"), "missing (required)");
+    parse_surfaces(r, node, key, s);
+    parse_coloring(r, node, key, s);
+  }
   if (node["image"]) parse_image(r, node["image"], child_key(key, "image"), s);
   if (node["camera"]) s.camera = parse_camera(r, node["camera"], child_key(key, "camera"));
   s.camera.auto_fit = s.camera.auto_fit || !node["camera"];
@@ -333,7 +341,7 @@ void check_total_pixels(const YamlReader& r, const YAML::Node& node,
 
 Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string& source,
                   int rank_count) {
-  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite", "threads"});
+  r.allow_keys(root, "", {"output", "trigger", "scenes", "bvh", "nonfinite", "threads", "probes"});
   Config config;
   config.source = source;
   if (root["output"]) config.output = parse_output(r, root["output"], rank_count);
@@ -368,6 +376,7 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
     }
   }
   check_total_pixels(r, scenes, config.scenes);
+  if (root["probes"]) config.probes = parse_probes(r, root["probes"]);
   return config;
 }
 

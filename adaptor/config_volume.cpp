@@ -1,0 +1,71 @@
+#include "config_volume.hpp"
+
+#include "render/core/value_bounds.hpp"
+#include "render/trace/colormap.hpp"
+
+namespace tetray::config {
+namespace {
+
+std::vector<render::OpacityPoint> parse_opacity(const YamlReader& r, const YAML::Node& node,
+                                                const std::string& key) {
+  r.expect_list(node, key);
+  if (node.size() == 0 || node.size() > kMaxOpacityPoints) {
+    r.fail(node, key,
+           "give 1 to " + std::to_string(kMaxOpacityPoints) + " [value, opacity] points");
+  }
+  std::vector<render::OpacityPoint> points;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string point_key = item_key(key, i);
+    const auto v = r.numbers(node[i], point_key, 2, 2);
+    if (std::abs(v[0]) > render::kMaxFieldValue) {
+      r.fail(node[i], point_key, "the value lies beyond the field range tetray accepts");
+    }
+    if (v[1] < 0 || v[1] > 1e6) r.fail(node[i], point_key, "the opacity must lie in [0, 1e6]");
+    if (!points.empty() && !(v[0] > points.back().value)) {
+      r.fail(node[i], point_key, "values must increase from point to point");
+    }
+    points.push_back({v[0], v[1]});
+  }
+  return points;
+}
+
+}  // namespace
+
+void parse_volume_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                        Scene& s) {
+  for (const char* k : {"isovalues", "colors", "color_by", "colormap", "color_range", "orbit"}) {
+    if (node[k]) r.fail(node[k], child_key(key, k), "not allowed in a volume scene");
+  }
+  const std::string vkey = child_key(key, "volume");
+  const YAML::Node v = node["volume"];
+  r.expect_map(v, vkey);
+  r.allow_keys(v, vkey, {"colormap", "range", "opacity", "unit_distance", "termination"});
+  if (!v["opacity"]) r.fail(v, child_key(vkey, "opacity"), "missing (required)");
+  VolumeSpec spec;
+  if (v["colormap"]) {
+    spec.colormap_name = r.string(v["colormap"], child_key(vkey, "colormap"));
+    if (!render::find_colormap(spec.colormap_name)) {
+      r.fail(v["colormap"], child_key(vkey, "colormap"),
+             "unknown colormap '" + spec.colormap_name + "' (known: viridis, coolwarm, grayscale)");
+    }
+  }
+  if (const YAML::Node range = v["range"]; range && !range.IsScalar()) {
+    const auto lo_hi = r.numbers_in(range, child_key(vkey, "range"), 2, 2, -render::kMaxFieldValue,
+                                    render::kMaxFieldValue);
+    if (!(lo_hi[0] < lo_hi[1])) r.fail(range, child_key(vkey, "range"), "needs low < high");
+    spec.range = {false, static_cast<float>(lo_hi[0]), static_cast<float>(lo_hi[1])};
+  } else if (range) {
+    r.choice(range, child_key(vkey, "range"), {"auto"});
+  }
+  spec.opacity = parse_opacity(r, v["opacity"], child_key(vkey, "opacity"));
+  if (v["unit_distance"]) {
+    spec.unit_distance =
+        r.number_in(v["unit_distance"], child_key(vkey, "unit_distance"), 1e-12, 1e12);
+  }
+  if (v["termination"]) {
+    spec.termination = r.number_in(v["termination"], child_key(vkey, "termination"), 0.5, 1.0);
+  }
+  s.volume = spec;
+}
+
+}  // namespace tetray::config

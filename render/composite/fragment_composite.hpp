@@ -1,0 +1,27 @@
+// Sort-last compositing of per-pixel fragment lists (render/core/fragments.hpp): every rank's
+// fragments of every pixel are gathered on the root, which merges each pixel's layers in depth
+// order with the one tie rule and the over operator. Volume runs of the walk and transparent
+// surface hits (zero-length fragments) go through the same merge, so a scene of both composites
+// in one pass. The gather moves every fragment once to the root (docs/architecture.md §8 names
+// the cost); an image-space split of the pixels (direct send) is the step beyond it.
+#pragma once
+
+#include <mpi.h>
+
+#include "render/core/fragments.hpp"
+#include "render/core/framebuffer.hpp"
+
+namespace tetray::render {
+
+struct FragmentCompositeStats {
+  std::uint64_t fragments = 0;  // on the root, from all ranks
+  std::uint64_t bytes_received = 0;
+};
+
+// Collective over `comm`: on `root`, `out` becomes the merged image of all ranks' fragments
+// (the same size on every rank); elsewhere it is left alone. Returns MPI_SUCCESS or the MPI
+// error code (MPI_ERR_COUNT when the gathered fragments would not fit one MPI count).
+int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Framebuffer& out,
+                        FragmentCompositeStats* stats = nullptr);
+
+}  // namespace tetray::render

@@ -1,0 +1,67 @@
+// Per-pixel fragment lists ("deep" images): what a rank sees along each pixel's ray as layers
+// with an entry and an exit depth and a premultiplied color, several per pixel where its
+// sub-domain is non-convex or a surface is transparent. Volume runs and surface hits (zero
+// length) are the same kind of fragment, so one merge serves both: fragments of a pixel are put
+// in order by entry depth, ties to the smaller key (the tie rule of docs/architecture.md §3),
+// and laid front to back with the over operator. Here so that both the walk stage (which makes
+// them) and the compositor (which exchanges them across ranks) see it without MPI.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "render/core/framebuffer.hpp"
+
+namespace tetray::render {
+
+struct Fragment {
+  float depth_in = 0, depth_out = 0;  // view-axis depths
+  std::uint32_t key = kNoHit;         // tie key of the first primitive of the fragment
+  float rgba[4] = {0, 0, 0, 0};       // linear, premultiplied
+};
+
+inline bool in_front_of(const Fragment& a, const Fragment& b) {
+  return wins_over(a.depth_in, a.key, b.depth_in, b.key);
+}
+
+// Pixel p's fragments are fragments[begin[p], begin[p + 1]).
+struct FragmentImage {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> begin;  // pixel_count + 1 offsets
+  std::vector<Fragment> fragments;
+
+  std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
+  std::span<const Fragment> pixel(std::size_t p) const {
+    return {fragments.data() + begin[p], fragments.data() + begin[p + 1]};
+  }
+};
+
+// Front-to-back over of one pixel's fragments, in place order first (sorted by in_front_of).
+inline void merge_pixel(std::span<Fragment> layers, float rgba[4], float& depth,
+                        std::uint32_t& key) {
+  std::sort(layers.begin(), layers.end(), in_front_of);
+  double out[4] = {0, 0, 0, 0};
+  for (const Fragment& f : layers) {
+    const double through = 1.0 - out[3];
+    for (int c = 0; c < 4; ++c) out[c] += through * f.rgba[c];
+  }
+  for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(out[c]);
+  depth = layers.empty() ? std::numeric_limits<float>::infinity() : layers.front().depth_in;
+  key = layers.empty() ? kNoHit : layers.front().key;
+}
+
+// The flat image of a fragment image: merged color, the nearest fragment's depth and key.
+inline Framebuffer resolve(FragmentImage& image) {
+  Framebuffer out(image.width, image.height);
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    std::span<Fragment> layers(image.fragments.data() + image.begin[p],
+                               image.fragments.data() + image.begin[p + 1]);
+    merge_pixel(layers, &out.rgba[4 * p], out.depth[p], out.hit[p]);
+  }
+  return out;
+}
+
+}  // namespace tetray::render

@@ -1,0 +1,67 @@
+// The faces where rays enter a rank's domain, in a small binary BVH of their own: a ray starts
+// its walk at the nearest boundary face it enters through, and after leaving the domain looks
+// for the next one (non-convex domains and sub-domains). The tree is built once per adjacency
+// (the faces depend on topology only) and refit when the geometry moves.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "render/volume/tet_volume.hpp"
+#include "render/walk/face_adjacency.hpp"
+#include "render/walk/face_crossing.hpp"
+#include "render/walk/ray_frame.hpp"
+
+namespace tetray::render {
+
+struct BoundaryFace {
+  std::uint32_t vertex[3];
+  std::uint32_t opposite_vertex;  // the tet's fourth vertex, on the domain's side
+  std::uint32_t tet;
+};
+
+struct BoundaryNode {
+  float lo[3], hi[3];
+  std::uint32_t first;  // inner: the first child (the second is first + 1); leaf: first face
+  std::uint32_t count;  // leaf: faces (>= 1); inner: 0
+};
+
+struct BoundaryFaces {
+  std::vector<BoundaryFace> faces;  // in leaf order
+  std::vector<BoundaryNode> nodes;  // nodes[0] is the root; children after their parent
+
+  std::size_t bytes() const {
+    return faces.capacity() * sizeof(BoundaryFace) + nodes.capacity() * sizeof(BoundaryNode);
+  }
+};
+
+BoundaryFaces build_boundary_faces(const TetVolume& volume,
+                                   std::span<const BoundaryFaceRef> boundary);
+
+// New node bounds from the vertex store as it is.
+void refit_boundary_faces(const TetVolume& volume, BoundaryFaces& boundary);
+
+// Where a walk enters the domain: the face, counter-clockwise around the ray, and the crossing.
+struct FaceEntry {
+  std::uint32_t face = 0;  // index into BoundaryFaces::faces
+  std::uint32_t tet = 0;
+  ProjectedFace projected{};
+  FaceCrossing crossing{};
+};
+
+// Entries are ordered by (t, face index); a walk asks for the first one after the previous.
+struct EntryCursor {
+  double t = 0;
+  std::uint32_t face = 0;
+  bool any = false;  // false: no entry yet, every (t, face) is after the cursor
+};
+
+// The first face, in (t, face) order and after `after`, through which the ray enters the domain
+// at t >= t_from.
+std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
+                                    const RayFrame& frame, double t_from, EntryCursor after);
+
+}  // namespace tetray::render

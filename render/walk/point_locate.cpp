@@ -1,0 +1,71 @@
+#include "render/walk/point_locate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/walk/face_crossing.hpp"
+
+namespace tetray::render {
+namespace {
+
+// Relative slack of the inside test: a point on a shared face belongs to both tets.
+constexpr double kFaceSlack = 1e-10;
+
+bool box_contains(const Bounds4& b, Vec3d p) {
+  for (int a = 0; a < 3; ++a) {
+    const double pad = kFaceSlack * (1.0 + std::abs(b.lo[a]) + std::abs(b.hi[a]));
+    if (p[a] < b.lo[a] - pad || p[a] > b.hi[a] + pad) return false;
+  }
+  return true;
+}
+
+std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
+  const Tet& tet = volume.tets[t];
+  Vec3d x[4];
+  for (int c = 0; c < 4; ++c) x[c] = vertex_position(volume, static_cast<std::uint32_t>(tet.v[c]));
+  PointLocation at{t, {}};
+  const Vec3f pf = static_cast<Vec3f>(p);
+  for (int c = 0; c < 4; ++c) {
+    const Vertex& v = volume.vertices[tet.v[c]];
+    if (pf.x == v.x && pf.y == v.y && pf.z == v.z) {
+      at.weight[c] = 1;
+      return at;
+    }
+  }
+  const Vec3d e1 = x[1] - x[0], e2 = x[2] - x[0], e3 = x[3] - x[0], q = p - x[0];
+  const double det = dot(e1, cross(e2, e3));
+  if (det == 0) return std::nullopt;
+  at.weight[1] = dot(q, cross(e2, e3)) / det;
+  at.weight[2] = dot(e1, cross(q, e3)) / det;
+  at.weight[3] = dot(e1, cross(e2, q)) / det;
+  at.weight[0] = 1.0 - at.weight[1] - at.weight[2] - at.weight[3];
+  for (double w : at.weight) {
+    if (w < -kFaceSlack) return std::nullopt;
+  }
+  return at;
+}
+
+}  // namespace
+
+std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local) {
+  if (bvh.empty()) return std::nullopt;
+  std::optional<PointLocation> best;
+  std::vector<std::uint32_t> stack{0};
+  while (!stack.empty()) {
+    const BvhNode& node = bvh.nodes[stack.back()];
+    stack.pop_back();
+    if (!box_contains(node.bounds, local)) continue;
+    if (!node.is_leaf()) {
+      stack.push_back(node.first);
+      stack.push_back(node.first + 1);
+      continue;
+    }
+    for (std::uint32_t t = node.first; t < node.first + node.count; ++t) {
+      const std::optional<PointLocation> found = in_tet(volume, t, local);
+      if (found && (!best || volume.tet_ids[t] < volume.tet_ids[best->tet])) best = found;
+    }
+  }
+  return best;
+}
+
+}  // namespace tetray::render

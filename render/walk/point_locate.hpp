@@ -1,0 +1,26 @@
+// Locating a point in a rank's tets through the volume's BVH (Aman et al. 2022, §4.2 locates by
+// walking; the min/max BVH is already there and needs no start tet): the tet containing it and
+// its barycentric coordinates, for probes. A point on a vertex, to the vertex store's float
+// precision, gets exactly that vertex's weight 1, so a probe there reads the vertex's value.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "render/bvh/bvh.hpp"
+#include "render/volume/tet_volume.hpp"
+
+namespace tetray::render {
+
+struct PointLocation {
+  std::uint32_t tet = 0;           // index into volume.tets
+  std::array<double, 4> weight{};  // of volume.tets[tet].v[0..3], summing to 1
+};
+
+// The tet containing `local` (the volume's local coordinates), allowing 1e-10 of its size
+// outside for points on faces; of several, the one with the smallest tet_ids entry, so the
+// answer does not depend on the BVH's layout. Empty outside every tet.
+std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local);
+
+}  // namespace tetray::render

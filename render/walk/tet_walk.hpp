@@ -1,0 +1,143 @@
+// The walk of a ray through the tets it crosses (Aman et al. 2022, §4): enter at the nearest
+// boundary face, then in each tet recover the vertex opposite the entry face with three xors,
+// project it, pick the exit face from the side of the ray relative to the three edges from that
+// vertex (Algorithm 1), and step to the neighbour across it (Algorithms 5 and 7). Where the ray
+// leaves the domain it looks for the next boundary face it enters through. docs/architecture.md
+// §8 describes the guarantees: the sides are exact functions of edges (ray_frame.hpp), so the
+// walk never loses or revisits a tet in exact arithmetic, and a step bound ends any ray that
+// rounding would make loop. Every decision must be computed with the same floating-point
+// operations wherever it is made, so this header is included only by render/ sources (built
+// with -ffp-contract=off); other code calls walk_segments.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "render/volume/tet_volume.hpp"
+#include "render/walk/boundary_faces.hpp"
+#include "render/walk/face_adjacency.hpp"
+#include "render/walk/face_crossing.hpp"
+#include "render/walk/ray_frame.hpp"
+
+namespace tetray::render {
+
+// One tet's stretch of the ray, with the linear field at its ends.
+struct WalkSegment {
+  std::uint32_t tet;
+  double t_in, t_out;
+  double f_in, f_out;
+  bool entered;  // the first tet after entering the domain through a boundary face
+};
+
+struct WalkCounters {
+  std::uint64_t tets_visited = 0;
+  std::uint64_t entries = 0;    // boundary faces entered through
+  std::uint64_t lost_rays = 0;  // ended by the step bound
+
+  WalkCounters& operator+=(const WalkCounters& o) {
+    tets_visited += o.tets_visited;
+    entries += o.entries;
+    lost_rays += o.lost_rays;
+    return *this;
+  }
+};
+
+template <typename Layout>
+struct WalkMesh {
+  const TetVolume& volume;
+  const FaceAdjacency<Layout>& adjacency;
+  const BoundaryFaces& boundary;
+};
+
+// Which face of the tet (entry face p0 p1 p2 counter-clockwise, new vertex p3) the ray leaves
+// through, as the index of the entry-face vertex it lies across (Aman et al. 2022, Algorithm 1;
+// the face opposite p_k is (p3, p_k+1, p_k+2), counter-clockwise again once p3 replaces p_k).
+inline int exit_face(const ProjectedFace& face, Point2 p3, std::uint32_t v3) {
+  const auto side = [&](int k) { return ray_side(p3, v3, face.point[k], face.vertex[k]); };
+  if (side(0) < 0) return side(2) > 0 ? 1 : 0;
+  return side(1) < 0 ? 2 : 0;
+}
+
+// Order of x among the four vertex indices of a tet.
+inline int order_among(std::uint32_t x, const ProjectedFace& face, std::uint32_t v3) {
+  return int(face.vertex[0] < x) + int(face.vertex[1] < x) + int(face.vertex[2] < x) + int(v3 < x);
+}
+
+// Walks the ray from t = 0 to t_max, calling visit(const WalkSegment&) for each tet in order
+// along the ray; visit returns false to stop the walk early (early ray termination).
+template <typename Layout, typename Visit>
+void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max, Visit&& visit,
+              WalkCounters& counters) {
+  const std::uint64_t step_bound = mesh.volume.tets.size() + 64;
+  std::uint64_t steps = 0;
+  double t_from = 0;
+  EntryCursor cursor;
+  while (const std::optional<FaceEntry> entry =
+             next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor)) {
+    if (entry->crossing.t > t_max) return;
+    cursor = {entry->crossing.t, entry->face, true};
+    ++counters.entries;
+    ProjectedFace face = entry->projected;
+    FaceCrossing in = entry->crossing;
+    std::uint32_t tet = entry->tet;
+    std::uint32_t previous = kBoundaryFace;
+    bool entered = true;
+    for (;;) {
+      if (++steps > step_bound) {
+        ++counters.lost_rays;
+        return;
+      }
+      ++counters.tets_visited;
+      const Layout& cell = mesh.adjacency.tets[tet];
+      const std::uint32_t v3 = face.vertex[0] ^ face.vertex[1] ^ face.vertex[2] ^ cell.vertex_xor;
+      const Point2 p3 = frame.project(vertex_position(mesh.volume, v3));
+      const int k = exit_face(face, p3, v3);
+      const std::uint32_t next =
+          cell.next(previous, order_among(v3, face, v3), order_among(face.vertex[k], face, v3));
+      face.vertex[k] = v3;
+      face.point[k] = p3;
+      FaceCrossing out = cross_face(mesh.volume, frame, face);
+      out.t = std::max(out.t, in.t);
+      if (!visit(WalkSegment{tet, in.t, out.t, in.f, out.f, entered}) || out.t >= t_max) return;
+      entered = false;
+      if (next == kBoundaryFace) {
+        // Rounding may put the next entry a few ulps before this exit.
+        t_from = out.t - 1e-9 * (1.0 + std::abs(out.t));
+        break;
+      }
+      previous = tet;
+      tet = next;
+      in = out;
+    }
+  }
+}
+
+// The segments of walk_ray, at most `max_segments` of them, for callers outside render/.
+template <typename Layout>
+std::vector<WalkSegment> walk_segments(const WalkMesh<Layout>& mesh, const RayFrame& frame,
+                                       double t_max, std::size_t max_segments,
+                                       WalkCounters& counters);
+
+// Walks every pixel's ray of a frame (origin `eye` in local coordinates, directions from
+// `directions`, one per pixel) without doing anything in the tets: the cost of the walk alone,
+// for the benchmark. Parallel over pixels in the calling oneTBB arena.
+template <typename Layout>
+WalkCounters walk_rays(const WalkMesh<Layout>& mesh, Vec3d eye, std::span<const Vec3d> directions);
+
+extern template WalkCounters walk_rays<Tet20>(const WalkMesh<Tet20>&, Vec3d,
+                                              std::span<const Vec3d>);
+extern template WalkCounters walk_rays<Tet16>(const WalkMesh<Tet16>&, Vec3d,
+                                              std::span<const Vec3d>);
+
+extern template std::vector<WalkSegment> walk_segments<Tet20>(const WalkMesh<Tet20>&,
+                                                              const RayFrame&, double, std::size_t,
+                                                              WalkCounters&);
+extern template std::vector<WalkSegment> walk_segments<Tet16>(const WalkMesh<Tet16>&,
+                                                              const RayFrame&, double, std::size_t,
+                                                              WalkCounters&);
+
+}  // namespace tetray::render

@@ -1,0 +1,141 @@
+#include "render/walk/volume_render.hpp"
+
+#include <oneapi/tbb/parallel_for.h>
+
+#include <limits>
+#include <vector>
+
+#include "render/walk/segment_integral.hpp"
+#include "render/walk/tet_walk.hpp"
+
+namespace tetray::render {
+namespace {
+
+struct RowOutput {
+  std::vector<Fragment> fragments;
+  std::vector<std::uint32_t> counts;  // per pixel of the row
+  VolumeRenderStats stats;
+};
+
+// What one ray gathers: a fragment per run of tets between a boundary entry and the next exit,
+// from the first tet with any opacity.
+class RayGatherer {
+ public:
+  RayGatherer(const TetVolume& volume, const VolumeRenderOptions& options,
+              const std::vector<double>& breakpoints, double depth_per_t,
+              std::vector<Fragment>& out)
+      : volume_(volume),
+        options_(options),
+        breakpoints_(breakpoints),
+        depth_per_t_(depth_per_t),
+        out_(out) {}
+
+  // Gathers one tet's stretch; false once the ray's opacity reached the termination.
+  bool add(const WalkSegment& s) {
+    if (s.entered) {
+      close_run();
+      open_ = true;
+      visible_ = false;
+      run_ = {};
+      fragment_ = {};
+    }
+    const Gathered g =
+        integrate_segment(options_.transfer, breakpoints_, s.t_out - s.t_in, s.f_in, s.f_out);
+    // The fragment starts where the ray first meets opacity, which does not depend on where
+    // a rank's sub-domain begins.
+    if (!visible_ && g.transmittance < 1) {
+      visible_ = true;
+      fragment_.depth_in = static_cast<float>(s.t_in * depth_per_t_);
+      fragment_.key = volume_.tet_ids[s.tet];
+    }
+    run_.then(g);
+    fragment_.depth_out = static_cast<float>(s.t_out * depth_per_t_);
+    const double opacity = 1.0 - transmittance_ * run_.transmittance;
+    if (opacity < options_.termination) return true;
+    terminated_ = true;
+    close_run();
+    return false;
+  }
+
+  void close_run() {
+    if (!open_) return;
+    open_ = false;
+    for (int c = 0; c < 3; ++c) fragment_.rgba[c] = static_cast<float>(run_.color[c]);
+    fragment_.rgba[3] = static_cast<float>(1.0 - run_.transmittance);
+    transmittance_ *= run_.transmittance;
+    if (visible_) out_.push_back(fragment_);
+  }
+
+  bool terminated() const { return terminated_; }
+
+ private:
+  const TetVolume& volume_;
+  const VolumeRenderOptions& options_;
+  const std::vector<double>& breakpoints_;
+  double depth_per_t_;
+  std::vector<Fragment>& out_;
+  bool open_ = false, visible_ = false, terminated_ = false;
+  Gathered run_;
+  Fragment fragment_;
+  double transmittance_ = 1;  // of the runs before this one
+};
+
+}  // namespace
+
+WalkStructure build_walk_structure(const TetVolume& volume) {
+  WalkStructure walk;
+  walk.adjacency = build_face_adjacency<Tet20>(volume);
+  walk.boundary = build_boundary_faces(volume, walk.adjacency.boundary);
+  return walk;
+}
+
+FragmentImage render_volume(const TetVolume& volume, const WalkStructure& walk,
+                            const Camera& camera, const VolumeRenderOptions& options,
+                            VolumeRenderStats* stats) {
+  const CameraFrame frame = make_frame(camera);
+  const std::vector<double> breakpoints = options.transfer.breakpoints();
+  const WalkMesh<Tet20> mesh{volume, walk.adjacency, walk.boundary};
+  const Vec3d eye = camera.eye - volume.origin;
+  std::vector<RowOutput> rows(static_cast<std::size_t>(camera.height));
+  tbb::parallel_for(0, camera.height, [&](int j) {
+    RowOutput& row = rows[static_cast<std::size_t>(j)];
+    row.counts.resize(static_cast<std::size_t>(camera.width));
+    for (int i = 0; i < camera.width; ++i) {
+      const Vec3d direction = pixel_direction(frame, camera, i, j);
+      const RayFrame ray(eye, direction);
+      const std::size_t before = row.fragments.size();
+      RayGatherer gather(volume, options, breakpoints, dot(ray.direction, frame.forward),
+                         row.fragments);
+      WalkCounters counters;
+      walk_ray(
+          mesh, ray, std::numeric_limits<double>::infinity(),
+          [&](const WalkSegment& s) { return gather.add(s); }, counters);
+      gather.close_run();
+      row.counts[static_cast<std::size_t>(i)] =
+          static_cast<std::uint32_t>(row.fragments.size() - before);
+      row.stats.tets_visited += counters.tets_visited;
+      row.stats.entries += counters.entries;
+      row.stats.lost_rays += counters.lost_rays;
+      row.stats.terminated_runs += gather.terminated();
+    }
+  });
+  FragmentImage image;
+  image.width = camera.width;
+  image.height = camera.height;
+  image.begin.reserve(image.pixel_count() + 1);
+  image.begin.push_back(0);
+  VolumeRenderStats total;
+  for (RowOutput& row : rows) {
+    for (std::uint32_t n : row.counts) image.begin.push_back(image.begin.back() + n);
+    image.fragments.insert(image.fragments.end(), row.fragments.begin(), row.fragments.end());
+    total.tets_visited += row.stats.tets_visited;
+    total.entries += row.stats.entries;
+    total.lost_rays += row.stats.lost_rays;
+    total.terminated_runs += row.stats.terminated_runs;
+  }
+  total.rays = image.pixel_count();
+  if (stats != nullptr) *stats = total;
+  return image;
+}
+
+}  // namespace tetray::render

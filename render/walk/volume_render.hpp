@@ -1,0 +1,49 @@
+// Direct volume rendering of the point field along the walk (docs/architecture.md §8): every
+// pixel's ray walks the tets from the boundary face it enters through; each tet's stretch is
+// integrated exactly in the linear field (segment_integral.hpp) and gathered front to back; a
+// run of tets from an entry to the next exit of the domain becomes one fragment, so a
+// non-convex domain gives several per pixel and ranks' fragments merge in depth order
+// (render/core/fragments.hpp, render/composite/fragment_composite.hpp). A run stops early once
+// its opacity reaches `termination`.
+#pragma once
+
+#include <cstdint>
+
+#include "render/core/fragments.hpp"
+#include "render/trace/camera.hpp"
+#include "render/walk/boundary_faces.hpp"
+#include "render/walk/face_adjacency.hpp"
+#include "render/walk/transfer_function.hpp"
+
+namespace tetray::render {
+
+struct VolumeRenderOptions {
+  TransferFunction transfer;
+  double termination = 0.99;  // opacity that ends a run; >= 1: never (no early termination)
+};
+
+struct VolumeRenderStats {
+  std::uint64_t rays = 0;
+  std::uint64_t tets_visited = 0;
+  std::uint64_t entries = 0;
+  std::uint64_t lost_rays = 0;        // ended by the walk's step bound
+  std::uint64_t terminated_runs = 0;  // ended early at the termination opacity
+};
+
+// The walk structures of a volume: built on a topology change or a BVH rebuild, the boundary
+// faces refit when the geometry moves.
+struct WalkStructure {
+  FaceAdjacency<Tet20> adjacency;
+  BoundaryFaces boundary;
+
+  std::size_t bytes() const { return adjacency.bytes() + boundary.bytes(); }
+};
+WalkStructure build_walk_structure(const TetVolume& volume);
+
+// The fragments of every pixel of `camera` (world coordinates; the volume's are local). Parallel
+// over rows in the calling oneTBB arena; the result does not depend on the thread count.
+FragmentImage render_volume(const TetVolume& volume, const WalkStructure& walk,
+                            const Camera& camera, const VolumeRenderOptions& options,
+                            VolumeRenderStats* stats = nullptr);
+
+}  // namespace tetray::render

@@ -1,0 +1,53 @@
+// The volume key of a scene: the transfer function's parts and their defaults; mistakes name
+// the key.
+#include <gtest/gtest.h>
+
+#include "config_parse.hpp"
+
+namespace tetray::config {
+namespace {
+
+ParseResult parse(const std::string& scene_lines) {
+  return parse_config("scenes:\n  - name: v\n    field: f\n" + scene_lines, "volume.yaml", 1);
+}
+
+TEST(ConfigVolume, TransferFunctionAndDefaults) {
+  ParseResult r = parse(
+      "    volume: {colormap: coolwarm, range: [-1, 2], opacity: [[0, 0], [1, 0.5]],\n"
+      "             unit_distance: 0.25, termination: 0.9}\n");
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const VolumeSpec& v = *r.config->scenes[0].volume;
+  EXPECT_EQ(v.colormap_name, "coolwarm");
+  EXPECT_FALSE(v.range.automatic);
+  EXPECT_EQ(v.range.hi, 2.0f);
+  ASSERT_EQ(v.opacity.size(), 2u);
+  EXPECT_EQ(v.opacity[1].opacity, 0.5);
+  EXPECT_EQ(v.unit_distance, 0.25);
+  EXPECT_EQ(v.termination, 0.9);
+  EXPECT_TRUE(r.config->scenes[0].surfaces.empty());
+  r = parse("    volume: {opacity: [[0, 1]]}\n");
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_TRUE(r.config->scenes[0].volume->range.automatic);
+  EXPECT_EQ(r.config->scenes[0].volume->termination, 0.99);
+}
+
+TEST(ConfigVolume, MistakesNameTheKey) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"    isovalues: [0]\n    volume: {opacity: [[0, 1]]}\n", "scenes[0].isovalues: not allowed"},
+      {"    volume: {}\n", "scenes[0].volume.opacity: missing"},
+      {"    volume: {opacity: [[1, 1], [0, 1]]}\n", "values must increase"},
+      {"    volume: {opacity: [[0, -1]]}\n", "opacity must lie in"},
+      {"    volume: {opacity: [[0, 1]], colormap: jet}\n", "unknown colormap 'jet'"},
+      {"    volume: {opacity: [[0, 1]], range: [2, 1]}\n", "needs low < high"},
+      {"    volume: {opacity: [[0, 1]], termination: 0.1}\n", "scenes[0].volume.termination"},
+      {"    volume: {opacity: [[0, 1]], step: 2}\n", "step"},
+      {"    colors: [[1, 1, 1]]\n", "scenes[0].isovalues: missing"},
+  };
+  for (const auto& [yaml, expected] : cases) {
+    const ParseResult r = parse(yaml);
+    EXPECT_NE(r.error.find(expected), std::string::npos) << yaml << " gave: " << r.error;
+  }
+}
+
+}  // namespace
+}  // namespace tetray::config

@@ -1,0 +1,140 @@
+// Fragment compositing across ranks: the gyroid-twist field volume-rendered by every rank on its
+// own tets (slabs, and a random partition whose sub-domains are full of holes, so pixels get many
+// fragments per rank) and composited on rank 0 gives the image of one rank rendering all tets,
+// to float rounding of the over operator (which is not associative, so partition-dependent
+// fragment boundaries cannot be bitwise equal). Without MPI: the merge of a pixel does not depend
+// on the order its fragments arrive in, and equal depths go to the smaller key.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "composite_test_images.hpp"
+#include "render/composite/fragment_composite.hpp"
+#include "render/walk/volume_render.hpp"
+#include "support/render_fixtures.hpp"
+
+namespace tetray::render {
+namespace {
+
+using testing::world;
+
+const GyroidTwist& scene() {
+  static const GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
+  return gyroid;
+}
+
+const Colormap& colormap() { return *find_colormap("coolwarm"); }
+
+VolumeRenderOptions options() {
+  VolumeRenderOptions o;
+  o.transfer = {&colormap(), -1.5, 1.5, {{-1.5, 0.0}, {-0.5, 0.3}, {0.2, 0.0}, {1.0, 2.0}}, 0.5};
+  o.termination = 1;
+  return o;
+}
+
+// The fragments of the tets `owner` gives to `rank`, all points passed (the store keeps the
+// used ones), vertices relative to the centre of the whole mesh's points.
+FragmentImage render_piece(const std::function<int(std::size_t)>& owner, int rank) {
+  const GyroidTwist& g = scene();
+  std::vector<std::int64_t> tets;
+  std::vector<std::uint32_t> ids;
+  for (std::size_t t = 0; t < g.mesh.tet_count(); ++t) {
+    if (owner(t) != rank) continue;
+    tets.insert(tets.end(), g.mesh.tets.begin() + 4 * t, g.mesh.tets.begin() + 4 * t + 4);
+    ids.push_back(static_cast<std::uint32_t>(t));
+  }
+  const Vec3d origin{0, 0, 0};
+  TetVolume volume;
+  Bvh bvh;
+  const PointSource points{g.mesh.points.data(), ScalarKind::f64, nullptr, ScalarKind::f64,
+                           g.mesh.point_count()};
+  const FieldSource field{g.field.data(), ScalarKind::f64, g.field.size()};
+  load_volume(volume, bvh, tets, {}, ids, points, field, {}, &origin);
+  const WalkStructure walk = build_walk_structure(volume);
+  return render_volume(volume, walk, test::benchmark_camera(test::scaled_side(96)), options());
+}
+
+void check_partition(const std::function<int(std::size_t)>& owner, const char* what) {
+  const auto w = world();
+  const FragmentImage mine = render_piece(owner, w.rank);
+  Framebuffer image;
+  FragmentCompositeStats stats;
+  ASSERT_EQ(composite_fragments(mine, MPI_COMM_WORLD, 0, image, &stats), MPI_SUCCESS) << what;
+  if (w.rank != 0) return;
+  FragmentImage whole = render_piece([](std::size_t) { return 0; }, 0);
+  const Framebuffer expected = resolve(whole);
+  ASSERT_EQ(image.pixel_count(), expected.pixel_count());
+  std::size_t covered = 0;
+  for (std::size_t p = 0; p < expected.pixel_count(); ++p) {
+    covered += expected.rgba[4 * p + 3] > 0.05f;
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_NEAR(image.rgba[4 * p + c], expected.rgba[4 * p + c], 2e-6) << what << " pixel " << p;
+    }
+    if (std::isinf(expected.depth[p])) {
+      ASSERT_EQ(image.depth[p], expected.depth[p]) << what << " pixel " << p;
+    } else {
+      ASSERT_NEAR(image.depth[p], expected.depth[p], 1e-5 * (1 + std::abs(expected.depth[p])))
+          << what << " pixel " << p;
+    }
+  }
+  EXPECT_GT(covered, expected.pixel_count() / 10) << what;
+  EXPECT_GE(stats.fragments, whole.fragments.size()) << what;
+}
+
+double centroid_x(std::size_t t) {
+  double x = 0;
+  for (int k = 0; k < 4; ++k) x += scene().mesh.points[3 * scene().mesh.tets[4 * t + k]];
+  return x / 4;
+}
+
+TEST(FragmentComposite, SlabsGiveTheOneRankImage) {
+  const int ranks = world().size;
+  check_partition(
+      [ranks](std::size_t t) {
+        return std::clamp(static_cast<int>((centroid_x(t) + 1) / 2 * ranks), 0, ranks - 1);
+      },
+      "slabs");
+}
+
+TEST(FragmentComposite, RandomPartitionGivesTheOneRankImage) {
+  const int ranks = world().size;
+  auto owners = std::make_shared<std::vector<int>>(scene().mesh.tet_count());
+  std::mt19937 rng(11);
+  for (int& o : *owners) o = std::uniform_int_distribution<int>(0, ranks - 1)(rng);
+  check_partition([owners](std::size_t t) { return (*owners)[t]; }, "random");
+}
+
+TEST(FragmentMerge, OrderOfArrivalDoesNotMatterAndTiesGoToTheSmallerKey) {
+  std::vector<Fragment> layers = {
+      {1.0f, 2.0f, 7, {0.2f, 0.1f, 0.0f, 0.3f}},
+      {1.0f, 1.0f, 3, {0.0f, 0.4f, 0.1f, 0.5f}},  // a surface at the same depth, smaller key
+      {2.0f, 3.5f, 9, {0.1f, 0.1f, 0.1f, 0.2f}},
+      {0.5f, 0.9f, 1, {0.05f, 0.0f, 0.3f, 0.4f}},
+  };
+  float first[4], depth = 0;
+  std::uint32_t key = 0;
+  merge_pixel(layers, first, depth, key);
+  EXPECT_EQ(depth, 0.5f);
+  EXPECT_EQ(key, 1u);
+  // By hand: over in the order key 1, key 3, key 7, key 9.
+  double expected[4] = {0, 0, 0, 0};
+  for (const Fragment* f : {&layers[0], &layers[1], &layers[2], &layers[3]}) {
+    const double through = 1 - expected[3];
+    for (int c = 0; c < 4; ++c) expected[c] += through * f->rgba[c];
+  }
+  for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(first[c], static_cast<float>(expected[c]));
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    std::shuffle(layers.begin(), layers.end(), rng);
+    float again[4];
+    merge_pixel(layers, again, depth, key);
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(again[c], first[c]);
+  }
+}
+
+}  // namespace
+}  // namespace tetray::render
