@@ -333,7 +333,11 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     const render::Stopwatch watch;
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
-    const render::UpdateResult result = volume.update(inputs, epochs_, config_.bvh, origin_);
+    render::UpdatePolicy policy = config_.bvh;
+    policy.vertex_gradients = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
+      return s.volume == v && s.config.shading.smooth;
+    });
+    const render::UpdateResult result = volume.update(inputs, epochs_, policy, origin_);
     first->record.bvh_ms = watch.ms();
     first->record.bvh_update = render::to_string(result.kind);
     strongest = std::max(strongest, result.kind);
@@ -371,6 +375,8 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     FieldVolume& volume = volumes_[s.volume];
     render::TraceOptions options;
     options.ambient = s.config.ambient;
+    options.smooth = s.config.shading.smooth;
+    options.clip = s.config.shading.clip;
     if (s.colormap != nullptr) {
       const render::Stopwatch watch;
       render::load_color_field(volume.volume(),

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "config_shading.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
@@ -58,6 +59,7 @@ struct Scene {
   float background[4] = {0, 0, 0, 0};  // RGBA, put under the image (alpha 0: transparent)
   float ambient = 0.15f;               // of the headlight (the only light type)
   Trigger trigger{};
+  ShadingSpec shading{};
 };
 
 struct Output {

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "config_shading_parse.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
@@ -193,18 +194,6 @@ void parse_image(const YamlReader& r, const YAML::Node& node, const std::string&
   s.height = static_cast<int>(height);
 }
 
-void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
-  r.expect_list(node, key);
-  if (node.size() != 1) r.fail(node, key, "give exactly one light (a headlight)");
-  const std::string light_key = item_key(key, 0);
-  r.allow_keys(node[0], light_key, {"type", "ambient"});
-  if (node[0]["type"]) r.choice(node[0]["type"], child_key(light_key, "type"), {"headlight"});
-  if (node[0]["ambient"]) {
-    s.ambient =
-        static_cast<float>(r.number_in(node[0]["ambient"], child_key(light_key, "ambient"), 0, 1));
-  }
-}
-
 void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
   const auto values = r.numbers_in(node["isovalues"], child_key(key, "isovalues"), 1,
                                    static_cast<std::size_t>(render::kMaxIsovalues),
@@ -285,7 +274,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
                   const Trigger& default_trigger) {
   r.allow_keys(node, key,
                {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
-                "camera", "image", "background", "lights", "trigger"});
+                "camera", "image", "background", "lights", "trigger", "shading", "clip"});
   Scene s;
   for (const char* k : {"name", "field", "isovalues"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -302,7 +291,9 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   if (node["camera"]) s.camera = parse_camera(r, node["camera"], child_key(key, "camera"));
   s.camera.auto_fit = s.camera.auto_fit || !node["camera"];
   if (node["background"]) parse_background(r, node["background"], child_key(key, "background"), s);
-  if (node["lights"]) parse_lights(r, node["lights"], child_key(key, "lights"), s);
+  if (node["lights"])
+    parse_lights(r, node["lights"], child_key(key, "lights"), s.ambient, s.shading);
+  parse_shading(r, node, key, s.shading);
   s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
                               : default_trigger;
   return s;
