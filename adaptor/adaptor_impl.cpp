@@ -13,6 +13,7 @@
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "scene_shadows.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
 
@@ -373,10 +374,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
     FieldVolume& volume = volumes_[s.volume];
-    render::TraceOptions options;
-    options.ambient = s.config.ambient;
-    options.smooth = s.config.shading.smooth;
-    options.clip = s.config.shading.clip;
+    render::TraceOptions options = trace_options(s);
     if (s.colormap != nullptr) {
       const render::Stopwatch watch;
       render::load_color_field(volume.volume(),
@@ -390,11 +388,21 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
       s.record.color_ms += watch.ms();
     }
     const render::Stopwatch watch;
-    s.image = render::trace(volume.volume(), volume.bvh(), camera_for(s, ranges_.scenes[k]),
-                            s.config.surfaces, options);
+    const bool shadows = options.lights.shadow_count() > 0;
+    render::trace_into(s.image, volume.volume(), volume.bvh(), camera_for(s, ranges_.scenes[k]),
+                       s.config.surfaces, options, nullptr, shadows ? &s.shadow_terms : nullptr);
     s.record.trace_ms = watch.ms();
   }
   return Status::success();
+}
+
+render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
+  render::TraceOptions options;
+  options.ambient = s.config.ambient;
+  options.smooth = s.config.shading.smooth;
+  options.clip = s.config.shading.clip;
+  options.lights = s.config.shading.lights;
+  return options;
 }
 
 // Before compositing, which leaves only the writer rank's image defined.
@@ -440,6 +448,7 @@ Status Adaptor::Impl::composite_and_submit() {
   if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
+  Status local_failure = Status::success();
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
@@ -451,6 +460,18 @@ Status Adaptor::Impl::composite_and_submit() {
                 "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
       }
       s.record.composite_ms = watch.ms();
+    }
+    if (!s.shadow_terms.empty()) {
+      const render::Stopwatch watch;
+      const FieldVolume& volume = volumes_[s.volume];
+      const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+      const render::TraceOptions options = trace_options(s);
+      const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
+      Status st = shadow_scene(s.image, s.shadow_terms, scene, comm_, writer);
+      if (st.code == StatusCode::mpi_error) return st;
+      // A failure of this rank alone: the other scenes' collectives still need it.
+      if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
+      s.record.composite_ms += watch.ms();
     }
     if (!is_writer()) continue;
     StepRecord& r = s.record;
@@ -467,7 +488,7 @@ Status Adaptor::Impl::composite_and_submit() {
     job.record = r;
     writer_->submit(std::move(job));
   }
-  return Status::success();
+  return local_failure;
 }
 
 Adaptor::Impl::SceneState* Adaptor::Impl::first_due_scene(std::size_t v) {

@@ -52,6 +52,7 @@ class Adaptor::Impl {
     bool skipped_last = false;  // at its last due step: its inputs are checked again
     render::ValueRange color_range;
     render::Framebuffer image;
+    std::vector<render::Framebuffer> shadow_terms;  // one per shadowing light (scene_shadows.hpp)
     StepRecord record;
   };
 
@@ -76,6 +77,7 @@ class Adaptor::Impl {
   Status trace_scenes(std::span<const FieldView> fields);
   Status write_rank_images();
   Status composite_and_submit();
+  render::TraceOptions trace_options(const SceneState& s) const;
 
   Status prepare_outputs_on_this_rank();
   bool is_writer() const { return comm_.rank == config_.output.writer_rank; }

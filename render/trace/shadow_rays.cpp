@@ -27,6 +27,7 @@ struct ShadowFrame {
   IsoSet isos;
   LocalClip clip;
   std::span<const float> depth;
+  float eye_magnitude = 0;  // largest coordinate of the eye, local
 };
 
 // The hit point of pixel p (local coordinates) from its depth, in double as every rank does it.
@@ -39,10 +40,10 @@ Vec3f hit_point(const ShadowFrame& f, int i, int j, float depth) {
 float max_abs(Vec3f v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 // How far short of its hit point a shadow ray stops (or, towards a directional light, how far
-// from it it starts): far above the float rounding of the point and of the ray, so the
-// surface never shadows itself where it is lit.
-float surface_gap(Vec3f point, float distance) {
-  return 1e-4f * std::max({distance, max_abs(point), 1e-30f});
+// from it it starts): far above the float rounding of the point (computed from the eye) and of
+// the ray, so the surface never shadows itself where it is lit.
+float surface_gap(const ShadowFrame& f, Vec3f point, float distance) {
+  return 1e-4f * std::max({distance, max_abs(point), f.eye_magnitude, 1e-30f});
 }
 
 // A frustum that culls nothing: shadow rays have no corner rays (the interval test of the
@@ -116,7 +117,7 @@ void point_light_tile(const ShadowFrame& f, Vec3f light, int x0, int y0, std::ui
     packet.dx[r] = d.x;
     packet.dy[r] = d.y;
     packet.dz[r] = d.z;
-    packet.tmax[r] = distance - surface_gap(point, distance);
+    packet.tmax[r] = distance - surface_gap(f, point, distance);
     if (first_valid < 0) first_valid = r;
   }
   if (first_valid < 0) return;
@@ -147,7 +148,7 @@ void directional_light_tile(const ShadowFrame& f, Vec3f to_light, int x0, int y0
       if (!(f.depth[p] < kInf)) continue;
       const Vec3f point = hit_point(f, i, j, f.depth[p]);
       RayPacket<1> ray;
-      ray.eye = point + surface_gap(point, 0) * to_light;
+      ray.eye = point + surface_gap(f, point, 0) * to_light;
       ray.dx[0] = to_light.x;
       ray.dy[0] = to_light.y;
       ray.dz[0] = to_light.z;
@@ -187,7 +188,8 @@ std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& 
                                             std::span<const float> depth) {
   std::vector<std::uint8_t> result(depth.size(), 0);
   if (bvh.empty() || options.lights.shadow_count() == 0) return result;
-  ShadowFrame f{volume, bvh, camera, make_frame(camera), {}, {}, depth};
+  ShadowFrame f{volume, bvh, camera, make_frame(camera), {}, {}, depth, 0};
+  f.eye_magnitude = max_abs(static_cast<Vec3f>(f.view.eye - volume.origin));
   f.isos.count = static_cast<int>(std::min<std::size_t>(surfaces.size(), kMaxIsovalues));
   for (int k = 0; k < f.isos.count; ++k) f.isos.values[k] = surfaces[k].value;
   std::sort(f.isos.values, f.isos.values + f.isos.count);
@@ -196,7 +198,7 @@ std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& 
     trace_tiles<false>(f, lights, result.data());
   } else {
     const Bounds4& root = bvh.nodes[0].bounds;
-    float magnitude = max_abs(static_cast<Vec3f>(f.view.eye - volume.origin));
+    float magnitude = f.eye_magnitude;
     for (int a = 0; a < 3; ++a)
       magnitude = std::max({magnitude, std::abs(root.lo[a]), std::abs(root.hi[a])});
     // Points on rays from a point light carry the rounding of its coordinates too.

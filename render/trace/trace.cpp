@@ -298,7 +298,11 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
 void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                 std::span<const IsoSurface> surfaces, const TraceOptions& options,
                 TraceStats* stats, std::vector<Framebuffer>* shadow_terms) {
-  if (image.width != camera.width || image.height != camera.height)
+  // A moved-from image keeps its sizes but not its storage.
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (image.width != camera.width || image.height != camera.height ||
+      image.pixel_count() != pixels || image.rgba.size() != 4 * pixels ||
+      image.hit.size() != pixels)
     image = Framebuffer(camera.width, camera.height);
   const bool lit = !options.lights.headlight_only();
   if (shadow_terms) {

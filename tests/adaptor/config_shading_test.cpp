@@ -1,5 +1,5 @@
-// The scene keys of the shading modalities: shading (smooth | flat) and clip (a box and up to six
-// planes), read into config::ShadingSpec; every mistake names the line and the key.
+// The scene keys of the shading modalities: shading (smooth | flat), clip (a box and up to six
+// planes) and lights, read into config::ShadingSpec; every mistake names the line and the key.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -42,6 +42,27 @@ TEST(ConfigShading, ReadsSmoothAndTheClipRegion) {
   EXPECT_DOUBLE_EQ(s.clip.planes[1].normal.x, std::sqrt(0.5));
 }
 
+TEST(ConfigShading, ReadsTheLights) {
+  const ParseResult r = parse_config(
+      scene_with("    lights: [{type: headlight},\n"
+                 "             {type: point, position: [1, 2, 3], shadows: true, ambient: 0.3},\n"
+                 "             {type: directional, direction: [0, -2, 0]}]\n"),
+      "a.yaml");
+  ASSERT_TRUE(r.config) << r.error;
+  const Scene& scene = r.config->scenes[0];
+  const render::Lights& lights = scene.shading.lights;
+  ASSERT_EQ(lights.count, 3);
+  EXPECT_EQ(lights.light[0].kind, render::LightKind::headlight);
+  EXPECT_EQ(lights.light[1].kind, render::LightKind::point);
+  EXPECT_EQ(lights.light[1].vector.z, 3);
+  EXPECT_TRUE(lights.light[1].shadows);
+  EXPECT_EQ(lights.light[2].kind, render::LightKind::directional);
+  EXPECT_DOUBLE_EQ(lights.light[2].vector.y, -1);  // a unit vector
+  EXPECT_FALSE(lights.light[2].shadows);
+  EXPECT_EQ(lights.shadow_count(), 1);
+  EXPECT_FLOAT_EQ(scene.ambient, 0.3f);
+}
+
 struct BadKey {
   std::string keys;
   std::string line;  // "a.yaml:<line>:"
@@ -77,7 +98,21 @@ INSTANTIATE_TEST_SUITE_P(
                " {point: [0, 0, 0], normal: [1, 0, 0]}, {point: [0, 0, 0], normal: [1, 0, 0]},"
                " {point: [0, 0, 0], normal: [1, 0, 0]}, {point: [0, 0, 0], normal: [1, 0, 0]},"
                " {point: [0, 0, 0], normal: [1, 0, 0]}, {point: [0, 0, 0], normal: [1, 0, 0]}]\n",
-               "a.yaml:6:", "scenes[0].clip.planes"}));
+               "a.yaml:6:", "scenes[0].clip.planes"},
+        BadKey{"    lights: []\n", "a.yaml:5:", "scenes[0].lights"},
+        BadKey{"    lights: [{type: headlight}, {type: headlight}]\n",
+               "a.yaml:5:", "scenes[0].lights[1]"},
+        BadKey{"    lights: [{type: point}]\n", "a.yaml:5:", "scenes[0].lights[0].position"},
+        BadKey{"    lights: [{type: point, position: [0, 0, 0], direction: [0, 0, 1]}]\n",
+               "a.yaml:5:", "scenes[0].lights[0]"},
+        BadKey{"    lights: [{type: headlight, shadows: true}]\n",
+               "a.yaml:5:", "scenes[0].lights[0]"},
+        BadKey{"    lights: [{type: directional, direction: [0, 0, 0]}]\n",
+               "a.yaml:5:", "scenes[0].lights[0].direction"},
+        BadKey{"    lights: [{type: point, position: [0, 0, 0], shadows: 3}]\n",
+               "a.yaml:5:", "scenes[0].lights[0].shadows"},
+        BadKey{"    lights: [{ambient: 0.1}, {type: point, position: [0, 0, 1], ambient: 0.2}]\n",
+               "a.yaml:5:", "scenes[0].lights[1].ambient"}));
 
 }  // namespace
 }  // namespace tetray::config

@@ -66,6 +66,7 @@ Json::Value scene(const SceneFigures& figures) {
   }
   json["ref"] = reference(figures.ref);
   json["refit"] = refit(figures.refit);
+  json["shading"] = shading_json(figures.shading);
   return json;
 }
 

@@ -60,6 +60,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   figures.ref = measure_reference(scene, camera, tetray.image, options.threads);
   figures.refit =
       measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
+  figures.shading = measure_shading(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   return figures;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_shading.hpp"
 #include "render/trace/trace.hpp"
 
 namespace tetray::bench {
@@ -67,6 +68,7 @@ struct SceneFigures {
   TetrayFigures tetray;
   ReferenceFigures ref;
   RefitFigures refit;
+  ShadingFigures shading;
 
   const PacketFigures& packet(render::PacketSize size) const;
 };

@@ -80,6 +80,7 @@ void print_scene(const SceneFigures& s) {
   print_tetray(s);
   print_reference(s.ref);
   print_refit(s.refit);
+  print_shading(s.shading);
   print_targets(s);
   std::fflush(stdout);
 }

@@ -26,9 +26,11 @@ render::TraceOptions shadowing_lights() {
   return options;
 }
 
+double max_abs(Vec3d v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
 // The gap tetray leaves at the surface end of a shadow ray (shadow_rays.cpp), in double.
-double surface_gap(Vec3d point, double distance) {
-  return 1e-4 * std::max({distance, std::abs(point.x), std::abs(point.y), std::abs(point.z)});
+double surface_gap(Vec3d point, Vec3d eye, double distance) {
+  return 1e-4 * std::max({distance, max_abs(point), max_abs(eye)});
 }
 
 struct ShadowCounts {
@@ -70,7 +72,8 @@ void expect_shadow_agreement(const render::TraceOptions& options, const std::str
             t_max = length(to_light);
           }
           to_light = normalize(to_light);
-          const double gap = surface_gap(point, light.kind == render::LightKind::point ? t_max : 0);
+          const double gap = surface_gap(point, camera.eye - scene.volume.origin,
+                                         light.kind == render::LightKind::point ? t_max : 0);
           const ReferenceShadow ref = reference.shadow_ray(point, to_light, gap, t_max);
           const bool got = (occluded[p] >> bit++) & 1;
           ++counts.rays;
@@ -173,6 +176,20 @@ TEST(Lights, AListedHeadlightIsTheDefaultShading) {
   EXPECT_EQ(image_difference(render::trace(scene.volume, scene.bvh, camera, surfaces, {}),
                              render::trace(scene.volume, scene.bvh, camera, surfaces, listed)),
             "");
+}
+
+// The adaptor hands each image to its writer thread by moving it and traces the next step into
+// the moved-from image, whose sizes remain while its storage is gone.
+TEST(TraceInto, AMovedFromImageGetsNewStorage) {
+  const GyroidTwist data = gyroid(5);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  const auto surfaces = make_surfaces(std::vector<double>{0.0});
+  const render::Camera camera = benchmark_camera(40);
+  render::Framebuffer image = render::trace(scene.volume, scene.bvh, camera, surfaces, {});
+  const render::Framebuffer first = image;
+  const render::Framebuffer moved = std::move(image);
+  render::trace_into(image, scene.volume, scene.bvh, camera, surfaces, {});
+  EXPECT_EQ(image_difference(image, first), "");
 }
 
 }  // namespace
