@@ -28,6 +28,9 @@ struct ShadowFrame {
   LocalClip clip;
   std::span<const float> depth;
   float eye_magnitude = 0;  // largest coordinate of the eye, local
+  // Bounds every coordinate of the vertices, the eye and the point lights (local): the
+  // frustums' and the clip margin's rounding scale.
+  float magnitude = 0;
 };
 
 // The hit point of pixel p (local coordinates) from its depth, in double as every rank does it.
@@ -83,10 +86,10 @@ void trace_any_hit(const ShadowFrame& f, RayPacket<S>& packet, std::uint8_t* occ
   });
 }
 
-// Finishes a packet whose eye, directions and tmax are set.
+// Finishes a packet whose eye, directions and tmax are set, with `frustum`.
 template <int S>
-void finish_shadow_packet(RayPacket<S>& packet) {
-  packet.frustum = open_frustum();
+void finish_shadow_packet(RayPacket<S>& packet, const PacketFrustum& frustum) {
+  packet.frustum = frustum;
   prepare_rays(packet);
   packet.tmax_bound = *std::max_element(packet.tmax, packet.tmax + RayPacket<S>::kRays);
   packet.rays_without_hit = 0;
@@ -129,7 +132,9 @@ void point_light_tile(const ShadowFrame& f, Vec3f light, int x0, int y0, std::ui
     packet.dz[r] = packet.dz[first_valid];
   }
   packet.eye = light;
-  finish_shadow_packet(packet);
+  finish_shadow_packet(packet,
+                       make_direction_frustum(packet.dx, packet.dy, packet.dz, n, f.magnitude)
+                           .value_or(open_frustum()));
   std::uint8_t occluded[n] = {};
   trace_any_hit<kTile, kClip>(f, packet, occluded);
   for (int r = 0; r < n; ++r) {
@@ -153,7 +158,7 @@ void directional_light_tile(const ShadowFrame& f, Vec3f to_light, int x0, int y0
       ray.dy[0] = to_light.y;
       ray.dz[0] = to_light.z;
       ray.tmax[0] = kInf;
-      finish_shadow_packet(ray);
+      finish_shadow_packet(ray, open_frustum());
       std::uint8_t occluded = 0;
       trace_any_hit<1, kClip>(f, ray, &occluded);
       if (occluded) result[p] |= bit;
@@ -188,25 +193,24 @@ std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& 
                                             std::span<const float> depth) {
   std::vector<std::uint8_t> result(depth.size(), 0);
   if (bvh.empty() || options.lights.shadow_count() == 0) return result;
-  ShadowFrame f{volume, bvh, camera, make_frame(camera), {}, {}, depth, 0};
+  ShadowFrame f{volume, bvh, camera, make_frame(camera), {}, {}, depth, 0, 0};
   f.eye_magnitude = max_abs(static_cast<Vec3f>(f.view.eye - volume.origin));
   f.isos.count = static_cast<int>(std::min<std::size_t>(surfaces.size(), kMaxIsovalues));
   for (int k = 0; k < f.isos.count; ++k) f.isos.values[k] = surfaces[k].value;
   std::sort(f.isos.values, f.isos.values + f.isos.count);
   const LocalLights lights = local_lights(options.lights, volume.origin);
+  const Bounds4& root = bvh.nodes[0].bounds;
+  f.magnitude = f.eye_magnitude;
+  for (int a = 0; a < 3; ++a)
+    f.magnitude = std::max({f.magnitude, std::abs(root.lo[a]), std::abs(root.hi[a])});
+  for (int k = 0; k < lights.count; ++k) {
+    if (lights.kind[k] == LightKind::point)
+      f.magnitude = std::max(f.magnitude, max_abs(lights.vector[k]));
+  }
   if (options.clip.empty()) {
     trace_tiles<false>(f, lights, result.data());
   } else {
-    const Bounds4& root = bvh.nodes[0].bounds;
-    float magnitude = f.eye_magnitude;
-    for (int a = 0; a < 3; ++a)
-      magnitude = std::max({magnitude, std::abs(root.lo[a]), std::abs(root.hi[a])});
-    // Points on rays from a point light carry the rounding of its coordinates too.
-    for (int k = 0; k < lights.count; ++k) {
-      if (lights.kind[k] == LightKind::point)
-        magnitude = std::max(magnitude, max_abs(lights.vector[k]));
-    }
-    f.clip = LocalClip(options.clip, volume.origin, magnitude);
+    f.clip = LocalClip(options.clip, volume.origin, f.magnitude);
     trace_tiles<true>(f, lights, result.data());
   }
   return result;
