@@ -15,6 +15,7 @@
 #include "render/core/stopwatch.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "scene_shadows.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
 
@@ -354,7 +355,11 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     const render::Stopwatch watch;
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
-    const render::UpdateResult result = volume.update(inputs, epochs_, config_.bvh, origin_);
+    render::UpdatePolicy policy = config_.bvh;
+    policy.vertex_gradients = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
+      return s.volume == v && s.config.shading.smooth;
+    });
+    const render::UpdateResult result = volume.update(inputs, epochs_, policy, origin_);
     walks_[v].after_update(volume.volume(), result.kind);
     first->record.bvh_ms = watch.ms();
     first->record.bvh_update = render::to_string(result.kind);
@@ -402,8 +407,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
       s.trace_ms.assign(1, watch.ms());
       continue;
     }
-    render::TraceOptions options;
-    options.ambient = s.config.ambient;
+    render::TraceOptions options = trace_options(s);
     if (s.colormap != nullptr) {
       const render::Stopwatch watch;
       render::load_color_field(volume.volume(),
@@ -418,19 +422,33 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
       s.record.color_ms += watch.ms();
     }
     // Every view from the one BVH of the step: only the camera changes.
-    const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+    const bool shadows = options.lights.shadow_count() > 0;
     s.images.resize(s.views.size());
     s.trace_ms.resize(s.views.size());
+    s.shadow_terms.resize(s.views.size());
     for (std::size_t v = 0; v < s.views.size(); ++v) {
       const render::Stopwatch watch;
-      s.images[v] =
-          render::trace(volume.volume(), volume.bvh(),
-                        s.config.orbit.enabled ? orbit_camera(camera, s.views[v]) : camera,
-                        s.config.surfaces, options);
+      render::trace_into(s.images[v], volume.volume(), volume.bvh(), view_camera(s, k, v),
+                         s.config.surfaces, options, nullptr,
+                         shadows ? &s.shadow_terms[v] : nullptr);
       s.trace_ms[v] = watch.ms();
     }
   }
   return Status::success();
+}
+
+render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
+  render::TraceOptions options;
+  options.ambient = s.config.ambient;
+  options.smooth = s.config.shading.smooth;
+  options.clip = s.config.shading.clip;
+  options.lights = s.config.shading.lights;
+  return options;
+}
+
+render::Camera Adaptor::Impl::view_camera(const SceneState& s, std::size_t k, std::size_t v) const {
+  const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+  return s.config.orbit.enabled ? orbit_camera(camera, s.views[v]) : camera;
 }
 
 // Before compositing, which leaves only the writer rank's image defined. Of an orbit, the first
@@ -477,31 +495,43 @@ Status Adaptor::Impl::composite_and_submit() {
   if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
+  Status local_failure = Status::success();
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     SceneState& s = scenes_[k];
     if (!s.due) continue;
     for (std::size_t v = 0; v < s.views.size(); ++v) {
-      if (Status st = composite_and_submit_view(s, v, sums[k], rss); !st.ok()) return st;
+      Status st = composite_and_submit_view(s, k, v, sums[k], rss, local_failure);
+      if (!st.ok()) return st;
     }
   }
-  return Status::success();
+  return local_failure;
 }
 
-// One view of a scene: composited onto the writer rank, which queues it with its own log row:
-// this view's trace and composite times, and (first view only, as shared work goes to the first
-// due scene) the stages the views share, run once for all of them.
-Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
-                                                const SceneCounters& sums, std::uint64_t rss) {
+// One view of a scene: composited onto the writer rank (with its shadows), which queues it with
+// its own log row: this view's trace and composite times, and (first view only, as shared work
+// goes to the first due scene) the stages the views share, run once for all of them.
+Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t k, std::size_t v,
+                                                const SceneCounters& sums, std::uint64_t rss,
+                                                Status& local_failure) {
   StepRecord r = s.record;
   r.trace_ms = s.trace_ms[v];
   if (v > 0) {
     r.check_ms = r.ingest_ms = r.bvh_ms = r.color_ms = 0;
     r.bvh_update = "none";
   }
+  if (Status st = composite_view(s, k, v, r, local_failure); !st.ok()) return st;
+  if (is_writer()) submit_view(s, v, std::move(r), sums, rss);
+  return Status::success();
+}
+
+// Collective. An MPI error is returned; a failure of this rank alone in the shadows goes to
+// `local_failure`, since the other scenes' collectives still need this rank.
+Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
+                                     Status& local_failure) {
   render::Framebuffer& image = s.images[v];
+  const int writer = config_.output.writer_rank;
   if (comm_.size > 1) {
     const render::Stopwatch watch;
-    const int writer = config_.output.writer_rank;
     const int rc = s.config.volume
                        ? render::composite_fragments(s.fragments, comm_.comm, writer, image)
                        : render::composite(image, comm_.comm, {.root = writer});
@@ -511,7 +541,23 @@ Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
     }
     r.composite_ms = watch.ms();
   }
-  if (!is_writer()) return Status::success();
+  if (s.config.volume || s.config.shading.lights.shadow_count() == 0) return Status::success();
+  const render::Stopwatch watch;
+  const FieldVolume& volume = volumes_[s.volume];
+  const render::Camera camera = view_camera(s, k, v);
+  const render::TraceOptions options = trace_options(s);
+  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
+  Status st = shadow_scene(image, s.shadow_terms[v], scene, comm_, writer);
+  if (st.code == StatusCode::mpi_error) return st;
+  if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
+  r.composite_ms += watch.ms();
+  return Status::success();
+}
+
+// On the writer rank: the view's image and log row to the writer thread.
+void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
+                                const SceneCounters& sums, std::uint64_t rss) {
+  render::Framebuffer& image = s.images[v];
   r.tets = sums.tets;
   r.kept_tets = sums.kept_tets;
   r.skipped_tets = sums.skipped_tets;
@@ -536,7 +582,6 @@ Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t v,
     job.theta = s.views[v].theta_deg;
   }
   writer_->submit(std::move(job));
-  return Status::success();
 }
 
 Adaptor::Impl::SceneState* Adaptor::Impl::first_due_scene(std::size_t v) {

@@ -61,6 +61,8 @@ class Adaptor::Impl {
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
     render::FragmentImage fragments;          // a volume scene's, before compositing
+    // Per view, one term per shadowing light (scene_shadows.hpp).
+    std::vector<std::vector<render::Framebuffer>> shadow_terms;
     StepRecord record;
   };
 
@@ -85,8 +87,17 @@ class Adaptor::Impl {
   Status trace_scenes(std::span<const FieldView> fields);
   Status write_rank_images();
   Status composite_and_submit();
-  Status composite_and_submit_view(SceneState& s, std::size_t v, const SceneCounters& sums,
-                                   std::uint64_t rss);
+  // Per view of a scene: compositing (and shadows), then the writer's job.
+  Status composite_and_submit_view(SceneState& s, std::size_t k, std::size_t v,
+                                   const SceneCounters& sums, std::uint64_t rss,
+                                   Status& local_failure);
+  Status composite_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
+                        Status& local_failure);
+  void submit_view(SceneState& s, std::size_t v, StepRecord r, const SceneCounters& sums,
+                   std::uint64_t rss);
+  render::TraceOptions trace_options(const SceneState& s) const;
+  // Scene k's camera for view v (its orbit's, or the camera as given).
+  render::Camera view_camera(const SceneState& s, std::size_t k, std::size_t v) const;
 
   Status prepare_outputs_on_this_rank();
   bool is_writer() const { return comm_.rank == config_.output.writer_rank; }

@@ -12,6 +12,7 @@
 #include "render/image/image_write.hpp"
 #include "render/image/movie_writer.hpp"
 
+#include "config_shading.hpp"
 #include "render/annotate/font.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
@@ -95,6 +96,7 @@ struct Scene {
   Annotations annotations{};
   Orbit orbit{};
   std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
+  ShadingSpec shading{};
 };
 
 struct Output {

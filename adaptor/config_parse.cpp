@@ -12,6 +12,7 @@
 #include "camera_path.hpp"
 #include "config_annotations.hpp"
 #include "config_probes.hpp"
+#include "config_shading_parse.hpp"
 #include "config_views.hpp"
 #include "config_volume.hpp"
 #include "render/trace/colormap.hpp"
@@ -198,18 +199,6 @@ void parse_image(const YamlReader& r, const YAML::Node& node, const std::string&
   s.height = static_cast<int>(height);
 }
 
-void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
-  r.expect_list(node, key);
-  if (node.size() != 1) r.fail(node, key, "give exactly one light (a headlight)");
-  const std::string light_key = item_key(key, 0);
-  r.allow_keys(node[0], light_key, {"type", "ambient"});
-  if (node[0]["type"]) r.choice(node[0]["type"], child_key(light_key, "type"), {"headlight"});
-  if (node[0]["ambient"]) {
-    s.ambient =
-        static_cast<float>(r.number_in(node[0]["ambient"], child_key(light_key, "ambient"), 0, 1));
-  }
-}
-
 void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
   const auto values = r.numbers_in(node["isovalues"], child_key(key, "isovalues"), 1,
                                    static_cast<std::size_t>(render::kMaxIsovalues),
@@ -288,10 +277,10 @@ bool valid_scene_name(const std::string& name) {
 
 Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
                   const Trigger& default_trigger) {
-  r.allow_keys(
-      node, key,
-      {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range", "camera",
-       "image", "background", "lights", "trigger", "annotations", "orbit", "volume"});
+  r.allow_keys(node, key,
+               {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
+                "camera", "image", "background", "lights", "trigger", "annotations", "orbit",
+                "volume", "shading", "clip"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -313,7 +302,9 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   if (node["camera"]) s.camera = parse_camera(r, node["camera"], child_key(key, "camera"));
   s.camera.auto_fit = s.camera.auto_fit || !node["camera"];
   if (node["background"]) parse_background(r, node["background"], child_key(key, "background"), s);
-  if (node["lights"]) parse_lights(r, node["lights"], child_key(key, "lights"), s);
+  if (node["lights"])
+    parse_lights(r, node["lights"], child_key(key, "lights"), s.ambient, s.shading);
+  parse_shading(r, node, key, s.shading);
   if (node["annotations"]) {
     s.annotations = parse_annotations(r, node["annotations"], child_key(key, "annotations"), s);
   }

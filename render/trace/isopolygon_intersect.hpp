@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/trace/clip_region.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/ray_packet.hpp"
 #include "render/trace/trace.hpp"
@@ -40,14 +41,17 @@ struct PolygonHit {
   std::int32_t iso;   // isovalue index
 };
 
-template <int S, bool kStats>
+// A hit filter (clip_region.hpp) may discard hits by their point; the default keeps all and
+// compiles to nothing.
+template <int S, bool kStats, typename HitFilter = NoHitFilter>
 class IsopolygonIntersector {
  public:
   using Packet = RayPacket<S>;
   using F = typename Packet::Lanes::F;
   static constexpr int W = Packet::kLaneWidth;
 
-  IsopolygonIntersector(Packet& packet, TraceStats& stats) : packet_(packet), stats_(stats) {}
+  IsopolygonIntersector(Packet& packet, TraceStats& stats, HitFilter filter = {})
+      : packet_(packet), stats_(stats), filter_(filter) {}
 
   // Intersects rays [first_active, kRays) with the polygon; returns whether any ray got a new
   // nearest hit.
@@ -165,7 +169,11 @@ class IsopolygonIntersector {
     if (!simd::any(inside)) return false;
     const F t = distance(s, dx, dy, dz);
     const F tmax = simd::load(packet_.tmax + base, F{});
-    const auto ahead = simd::both(inside, t > F(0.0f));
+    auto ahead = simd::both(inside, t > F(0.0f));
+    if constexpr (!HitFilter::kKeepsAll) {
+      const Vec3f e = packet_.eye;
+      ahead = simd::both(ahead, filter_.clip->keeps(e.x + t * dx, e.y + t * dy, e.z + t * dz));
+    }
     // Nearer than the hit so far, or exactly as near (a shared edge or vertex, or a surface seen
     // twice) with a smaller tie key.
     const auto tie_won =
@@ -206,6 +214,7 @@ class IsopolygonIntersector {
 
   Packet& packet_;
   TraceStats& stats_;
+  [[no_unique_address]] HitFilter filter_;
 };
 
 }  // namespace tetray::render

@@ -1,11 +1,14 @@
 // The bounding frustum of a packet of primary rays (Wald et al. 2007, §4.3): the four planes
 // through the eye and the packet's corner rays. Primary rays share their origin and fill a
 // rectangle of the image, so this frustum is exact up to a small slack, where the
-// interval-arithmetic test of Wald et al. 2007, §5.2 III bounds the rays' directions by a box (the
-// form shadow rays, which have no corner rays, will need). It rejects a tet from its four vertices:
-// most tets a packet's traversal reaches lie beside the packet, their bounding boxes overlapping
-// its frustum but their hulls not, and each rejection saves an isopolygon extraction.
+// interval-arithmetic test of Wald et al. 2007, §5.2 III bounds the rays' directions by a box
+// (shadow rays have no corner rays: make_direction_frustum bounds their slopes instead). It
+// rejects a tet from its four vertices: most tets a packet's traversal reaches lie beside the
+// packet, their bounding boxes overlapping its frustum but their hulls not, and each rejection
+// saves an isopolygon extraction.
 #pragma once
+
+#include <optional>
 
 #include "render/core/simd.hpp"
 #include "render/core/vec.hpp"
@@ -66,5 +69,12 @@ struct PacketFrustum {
 // 1/16 pixel plus 1e-5 of its slope against the rounding of the rays' own directions.
 PacketFrustum make_packet_frustum(const Camera& camera, const CameraFrame& frame, int x0, int y0,
                                   int x1, int y1, float magnitude);
+
+// The frustum of rays from a shared origin with the given unit directions and no corner rays
+// (shadow rays from a point light, Wald et al. 2007, §7): four planes around the axis of their
+// mean direction that bound every ray's slopes, with the same slack. None when some ray is more
+// than 60 degrees off that axis.
+std::optional<PacketFrustum> make_direction_frustum(const float* dx, const float* dy,
+                                                    const float* dz, int count, float magnitude);
 
 }  // namespace tetray::render

@@ -8,12 +8,16 @@
 //   IV  else rays are tested in order until one hits; those before it become inactive for the
 //       subtree (first-active tracking).
 // Leaves get the same geometric test, then the leaf operation runs from the first active ray.
+// A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test;
+// the default one discards none and compiles to nothing.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "render/bvh/bvh.hpp"
+#include "render/trace/clip_region.hpp"
 #include "render/trace/iso_set.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/ray_packet.hpp"
@@ -25,17 +29,19 @@ namespace tetray::render {
 // 1 + 2 gamma(3), so rounding never lets a ray miss a box around a surface it hits.
 inline constexpr float kRobustFar = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
-template <int S, bool kStats>
+template <int S, bool kStats, typename NodeFilter = NoNodeFilter>
 class PacketTraversal {
  public:
   using Packet = RayPacket<S>;
   using F = typename Packet::Lanes::F;
   static constexpr int W = Packet::kLaneWidth;
 
-  PacketTraversal(const Bvh& bvh, const IsoSet& isos, Packet& packet, TraceStats& stats)
-      : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats) {}
+  PacketTraversal(const Bvh& bvh, const IsoSet& isos, Packet& packet, TraceStats& stats,
+                  NodeFilter filter = {})
+      : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats), filter_(filter) {}
 
-  // Runs the traversal; leaf(node, first_active) intersects a leaf's tets.
+  // Runs the traversal; leaf(node, first_active) intersects a leaf's tets. A leaf operation
+  // that returns bool ends the traversal by returning true (any-hit rays: all are done).
   template <typename LeafOp>
   void run(LeafOp&& leaf) {
     if (bvh_.empty() || !range_active(bvh_.nodes[0])) return;
@@ -50,7 +56,13 @@ class PacketTraversal {
     for (;;) {
       if (active >= 0) {
         descend(node, active, [&](std::uint32_t far, int fa) { stack[top++] = {far, fa}; });
-        if (active >= 0) leaf(bvh_.nodes[node], active);
+        if (active >= 0) {
+          if constexpr (std::is_same_v<decltype(leaf(bvh_.nodes[node], active)), bool>) {
+            if (leaf(bvh_.nodes[node], active)) return;
+          } else {
+            leaf(bvh_.nodes[node], active);
+          }
+        }
       }
       if (top == 0) return;
       --top;
@@ -83,7 +95,7 @@ class PacketTraversal {
 
   bool range_active(const BvhNode& n) {
     if constexpr (kStats) ++stats_.isorange_tests;
-    return isos_.straddled_by(n.bounds.lo[3], n.bounds.hi[3]);
+    return isos_.straddled_by(n.bounds.lo[3], n.bounds.hi[3]) && !filter_.discards(n.bounds);
   }
 
   // Walks down from `node` to a leaf (updating node and active), pushing far children of
@@ -166,6 +178,7 @@ class PacketTraversal {
   const IsoSet& isos_;
   Packet& packet_;
   TraceStats& stats_;
+  [[no_unique_address]] NodeFilter filter_;
 };
 
 }  // namespace tetray::render

@@ -42,15 +42,7 @@ void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, 
 }
 
 template <int S>
-void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
-                  const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
-                  int x0, int y0) {
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  packet.eye = static_cast<Vec3f>(frame.eye - origin);
-  const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
-  packet.frustum = frustum;
-  for (int row = 0; row < S; ++row)
-    setup_row(packet, directions, x0, std::min(y0 + row, y1), row, y0 + row <= y1, x1 - x0 + 1);
+void prepare_rays(RayPacket<S>& packet) {
   constexpr int n = RayPacket<S>::kRays;
   for (int r = 0; r < n; ++r) {
     packet.ix[r] = 1.0f / packet.dx[r];
@@ -67,6 +59,19 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
     simd::min_max(inv[a], n, packet.inv_lo[a], packet.inv_hi[a]);
     packet.inv_straddles[a] = packet.inv_lo[a] < 0 && packet.inv_hi[a] > 0;
   }
+}
+
+template <int S>
+void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
+                  const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
+                  int x0, int y0) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  packet.eye = static_cast<Vec3f>(frame.eye - origin);
+  const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
+  packet.frustum = frustum;
+  for (int row = 0; row < S; ++row)
+    setup_row(packet, directions, x0, std::min(y0 + row, y1), row, y0 + row <= y1, x1 - x0 + 1);
+  prepare_rays(packet);
   packet.tmax_bound = kInf;
   packet.rays_without_hit = (x1 - x0 + 1) * (y1 - y0 + 1);
   packet.forward = static_cast<Vec3f>(frame.forward);
@@ -91,6 +96,8 @@ template void setup_packet<16>(RayPacket<16>&, const Camera&, const CameraFrame&
                                const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
 template void setup_packet<32>(RayPacket<32>&, const Camera&, const CameraFrame&,
                                const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
+template void prepare_rays<1>(RayPacket<1>&);
+template void prepare_rays<16>(RayPacket<16>&);
 template void update_tmax_bound<1>(RayPacket<1>&);
 template void update_tmax_bound<8>(RayPacket<8>&);
 template void update_tmax_bound<16>(RayPacket<16>&);

@@ -58,6 +58,11 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
                   const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
                   int x0, int y0);
 
+// Completes a packet whose directions, tmax and eye are set (primary or shadow rays): inverse
+// directions, no hits yet, and the interval of the inverse directions.
+template <int S>
+void prepare_rays(RayPacket<S>& packet);
+
 // The largest tmax of the packet's rays (computed once every ray in the image has a hit).
 template <int S>
 void update_tmax_bound(RayPacket<S>& packet);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "render/trace/camera.hpp"
+#include "render/trace/lights.hpp"
 #include "render/trace/trace.hpp"
 
 namespace tetray::render {
@@ -28,6 +29,28 @@ struct RayHits {
 // divisions and double-precision depths are the costly part of shading, and run vectorized.
 // Values of rays that hit nothing are meaningless.
 void light_and_depth(const ShadeContext& ctx, const RayHits& hits, float* light, float* depth);
+
+// Smooth shading: replaces the normal of each ray that hit (tet[r] >= 0) by the field gradient
+// interpolated barycentrically at its hit point from the tet's vertex gradients
+// (TetVolume::gradients, which must be filled).
+void interpolate_normals(const ShadeContext& ctx, const RayHits& hits, const std::int32_t* tet,
+                         float* nx, float* ny, float* nz);
+
+// A scene's lights in the volume's local float coordinates: point lights by position,
+// directional ones by the unit vector towards the light.
+struct LocalLights {
+  int count = 0;
+  LightKind kind[kMaxLights];
+  Vec3f vector[kMaxLights];
+  bool shadows[kMaxLights];
+};
+LocalLights local_lights(const Lights& lights, Vec3d origin);
+
+// With several lights, or other than a headlight: overwrites `light` with the factor of every
+// ray of `hits` (the eye at `eye`, local) and writes, per shadowing light j in order, the part
+// of that factor the light gives to shadow_factor[j].
+void light_terms(const ShadeContext& ctx, const LocalLights& lights, const RayHits& hits, Vec3f eye,
+                 float* light, float* const* shadow_factor);
 
 // The color field's colormap value at the hit point eye + t d of a ray in volume.tets[tet].
 void field_color(const ShadeContext& ctx, int tet, Vec3f d, float t, float rgb[3]);

@@ -11,11 +11,12 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 
 #include "render/trace/isopolygon_intersect.hpp"
+#include "render/trace/leaf_intersect.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/shade.hpp"
-#include "render/trace/tet_straddle.hpp"
 
 namespace tetray::render {
 namespace {
@@ -28,6 +29,8 @@ constexpr int kBlock = 32;  // pixels a side of a parallel task, a multiple of e
 struct VolumeExtent {
   Vec3f lo, hi;
   float magnitude = 0;
+
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
 };
 
 VolumeExtent volume_extent(const Bvh& bvh, Vec3f eye) {
@@ -43,6 +46,16 @@ VolumeExtent volume_extent(const Bvh& bvh, Vec3f eye) {
   return extent;
 }
 
+// Narrows the extent to the clip box (with its margin): a packet whose frustum misses the kept
+// part of the volume sees only background.
+void clip_extent(VolumeExtent& extent, const LocalClip& clip, Vec3f eye) {
+  if (!clip.has_box) return;
+  for (int a = 0; a < 3; ++a) {
+    extent.lo[a] = std::max(extent.lo[a], clip.lo[a] - clip.margin - eye[a]);
+    extent.hi[a] = std::min(extent.hi[a], clip.hi[a] + clip.margin - eye[a]);
+  }
+}
+
 struct Frame {
   const TetVolume& volume;
   const Bvh& bvh;
@@ -53,6 +66,11 @@ struct Frame {
   VolumeExtent extent;
   int surface_of_sorted[kMaxIsovalues];
   ShadeContext shade;
+  bool smooth = false;  // options.smooth with gradients to interpolate
+  LocalClip clip;       // options.clip in local coordinates (used when it is not empty)
+  LocalLights lights;   // used unless options.lights is a headlight alone
+  bool lit = false;
+  std::vector<Framebuffer>* shadow_terms = nullptr;  // one per shadowing light, or null
 };
 
 // One packet row's pixels, composed in the cache and then written to the frame in one go.
@@ -93,15 +111,50 @@ void write_rows(const Frame& f, int x0, int y0, Framebuffer& image, Compose&& co
   simd::stream_fence();
 }
 
+// Several lights: the light factor of every ray, and each shadowing light's part of the color
+// into its own image (shadow_terms), with the pixel's depth and key.
+template <int S>
+void light_packet(const Frame& f, const RayPacket<S>& packet, const RayHits& hits, int x0, int y0,
+                  const float* depth, float* light) {
+  constexpr int n = RayPacket<S>::kRays;
+  alignas(64) float factor[kMaxLights][n];
+  float* factors[kMaxLights];
+  for (int k = 0; k < kMaxLights; ++k) factors[k] = factor[k];
+  light_terms(f.shade, f.lights, hits, packet.eye, light, factors);
+  if (f.shadow_terms == nullptr) return;
+  const int columns = std::min(S, f.camera.width - x0);
+  for (std::size_t j = 0; j < f.shadow_terms->size(); ++j) {
+    Framebuffer& term = (*f.shadow_terms)[j];
+    for (int row = 0; row < S && y0 + row < f.camera.height; ++row)
+      for (int c = 0; c < columns; ++c) {
+        const int r = row * S + c;
+        const std::size_t p = term.index(x0 + c, y0 + row);
+        float* rgba = &term.rgba[4 * p];
+        if (packet.tet[r] < 0) {
+          std::fill_n(rgba, 4, 0.0f);
+          term.depth[p] = std::numeric_limits<float>::infinity();
+          term.hit[p] = kNoHit;
+          continue;
+        }
+        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
+                    packet.tet[r], packet.iso[r], factor[j][r], rgba);
+        term.depth[p] = depth[r];
+        term.hit[p] = packet.key[r];
+      }
+  }
+}
+
 // Writes the packet's pixels: the background, or the shaded hit.
 template <int S, bool kStats>
-void write_pixels(const Frame& f, const RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
+void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
                   TraceStats& stats) {
   constexpr int n = RayPacket<S>::kRays;
   alignas(64) float light[n], depth[n];
-  light_and_depth(
-      f.shade, {packet.dx, packet.dy, packet.dz, packet.nx, packet.ny, packet.nz, packet.tmax, n},
-      light, depth);
+  const RayHits hits{packet.dx, packet.dy, packet.dz,   packet.nx,
+                     packet.ny, packet.nz, packet.tmax, n};
+  if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
+  light_and_depth(f.shade, hits, light, depth);
+  if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
   write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
     constexpr float kInf = std::numeric_limits<float>::infinity();
     const int r0 = row * S;
@@ -128,74 +181,50 @@ void write_pixels(const Frame& f, const RayPacket<S>& packet, int x0, int y0, Fr
 // A packet whose frustum misses the whole volume: background, without setting up its rays.
 template <int S, bool kStats>
 void write_background(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
-  write_rows<S>(f, x0, y0, image, [&](int, int columns, PixelRow<S>& out) {
+  const auto background = [&](int, int columns, PixelRow<S>& out) {
     std::fill_n(out.rgba, 4 * columns, 0.0f);
     std::fill_n(out.depth, columns, std::numeric_limits<float>::infinity());
     std::fill_n(out.hit, columns, kNoHit);
+  };
+  write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
+    background(row, columns, out);
     if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
+  });
+  if (f.lit && f.shadow_terms) {
+    for (Framebuffer& term : *f.shadow_terms) write_rows<S>(f, x0, y0, term, background);
+  }
+}
+
+// Traces the packet's rays through the one traversal, with the node and hit filters of the
+// scene's clip region (none without one).
+template <int S, bool kStats, bool kClip>
+void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats) {
+  using NodeFilter = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
+  using HitFilter = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
+  PacketTraversal<S, kStats, NodeFilter> traversal(f.bvh, f.isos, packet, stats,
+                                                   NodeFilter(f.clip));
+  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, HitFilter(f.clip));
+  traversal.run([&](const BvhNode& leaf, int first_active) {
+    if (intersect_leaf<S, kStats>(f.volume, f.isos, leaf, first_active, intersector, packet, stats))
+      update_tmax_bound(packet);
   });
 }
 
-// The tet's hull lies outside the packet's frustum, behind the eye or beyond every ray's hit so
-// far.
-template <int S>
-bool frustum_misses_tet(const RayPacket<S>& packet, const TetCorners& corners) {
-  const simd::Float4 q[3] = {corners.column[0] - packet.eye.x, corners.column[1] - packet.eye.y,
-                             corners.column[2] - packet.eye.z};
-  return packet.frustum.misses_hull(q) || packet.frustum.outside_depths(q, packet.tmax_bound);
-}
-
-// Intersects the isopolygons of the leaf's tets that straddle an isovalue (§5.2 V) and, for
-// packets, meet the packet's frustum; returns whether any ray got a new nearest hit.
-template <int S, bool kStats>
-bool intersect_leaf(const Frame& f, const BvhNode& leaf, int first_active,
-                    IsopolygonIntersector<S, kStats>& intersector, const RayPacket<S>& packet,
-                    TraceStats& stats) {
-  bool hit = false;
-  const std::uint32_t end = leaf.first + leaf.count;
-  for (std::uint32_t batch = leaf.first; batch < end; batch += simd::kWidth) {
-    const int count = static_cast<int>(std::min<std::uint32_t>(simd::kWidth, end - batch));
-    if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
-    for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
-         straddling &= straddling - 1) {
-      const std::uint32_t t = batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
-      const TetCorners corners = load_corners(f.volume, f.volume.tets[t]);
-      if constexpr (S > 1) {
-        if (frustum_misses_tet(packet, corners)) continue;
-      }
-      for (int k = 0; k < f.isos.count; ++k) {
-        const int case_index = iso_case(corners, f.isos.values[k]);
-        if (case_index == 0 || case_index == 15) continue;
-        if constexpr (kStats) ++stats.isopolygon_extractions;
-        const Isopolygon poly = extract_isopolygon(corners, case_index, f.isos.values[k]);
-        const PolygonHit id{f.volume.tet_ids[t], static_cast<std::int32_t>(t), k};
-        hit |= intersector.intersect(poly, id, first_active);
-      }
-    }
-  }
-  return hit;
-}
-
-template <int S, bool kStats>
+template <int S, bool kStats, bool kClip>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
   PacketFrustum frustum{};  // single rays use none
   if constexpr (S > 1) {
     frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
-    if (f.bvh.empty() || frustum.misses_box(f.extent.lo, f.extent.hi))
+    if (f.bvh.empty() || f.extent.empty() || frustum.misses_box(f.extent.lo, f.extent.hi))
       return write_background<S, kStats>(f, x0, y0, image, stats);
   }
   RayPacket<S> packet;
   setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, x0, y0);
-  PacketTraversal<S, kStats> traversal(f.bvh, f.isos, packet, stats);
-  IsopolygonIntersector<S, kStats> intersector(packet, stats);
-  traversal.run([&](const BvhNode& leaf, int first_active) {
-    if (intersect_leaf(f, leaf, first_active, intersector, packet, stats))
-      update_tmax_bound(packet);
-  });
+  trace_rays<S, kStats, kClip>(f, packet, stats);
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
 
-template <int S, bool kStats>
+template <int S, bool kStats, bool kClip>
 void trace_blocks(const Frame& f, Framebuffer& image, TraceStats* total) {
   const int blocks_x = (f.camera.width + kBlock - 1) / kBlock;
   const int blocks = blocks_x * ((f.camera.height + kBlock - 1) / kBlock);
@@ -205,19 +234,28 @@ void trace_blocks(const Frame& f, Framebuffer& image, TraceStats* total) {
     const int bx = b % blocks_x * kBlock, by = b / blocks_x * kBlock;
     for (int y = by; y < by + kBlock && y < f.camera.height; y += S)
       for (int x = bx; x < bx + kBlock && x < f.camera.width; x += S)
-        trace_packet<S, kStats>(f, x, y, image, local);
+        trace_packet<S, kStats, kClip>(f, x, y, image, local);
   });
   if (total) {
     for (const TraceStats& s : stats) *total += s;
   }
 }
 
-template <int S>
+template <int S, bool kClip>
 void trace_with(const Frame& f, Framebuffer& image, bool collect, TraceStats* stats) {
   if (collect) {
-    trace_blocks<S, true>(f, image, stats);
+    trace_blocks<S, true, kClip>(f, image, stats);
   } else {
-    trace_blocks<S, false>(f, image, nullptr);
+    trace_blocks<S, false, kClip>(f, image, nullptr);
+  }
+}
+
+template <int S>
+void trace_with(const Frame& f, Framebuffer& image, bool clipped, bool collect, TraceStats* stats) {
+  if (clipped) {
+    trace_with<S, true>(f, image, collect, stats);
+  } else {
+    trace_with<S, false>(f, image, collect, stats);
   }
 }
 
@@ -253,15 +291,24 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                   std::span<const IsoSurface> surfaces, const TraceOptions& options,
                   TraceStats* stats) {
   Framebuffer image;
-  trace_into(image, volume, bvh, camera, surfaces, options, stats);
+  trace_into(image, volume, bvh, camera, surfaces, options, stats, nullptr);
   return image;
 }
 
 void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                 std::span<const IsoSurface> surfaces, const TraceOptions& options,
-                TraceStats* stats) {
-  if (image.width != camera.width || image.height != camera.height)
+                TraceStats* stats, std::vector<Framebuffer>* shadow_terms) {
+  // A moved-from image keeps its sizes but not its storage.
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (image.width != camera.width || image.height != camera.height ||
+      image.pixel_count() != pixels || image.rgba.size() != 4 * pixels ||
+      image.hit.size() != pixels)
     image = Framebuffer(camera.width, camera.height);
+  const bool lit = !options.lights.headlight_only();
+  if (shadow_terms) {
+    shadow_terms->resize(lit ? static_cast<std::size_t>(options.lights.shadow_count()) : 0);
+    for (Framebuffer& term : *shadow_terms) term = Framebuffer(camera.width, camera.height);
+  }
   const CameraFrame view = make_frame(camera);
   Frame f{volume,
           bvh,
@@ -271,27 +318,39 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
           {},
           volume_extent(bvh, static_cast<Vec3f>(view.eye - volume.origin)),
           {},
-          {volume, view, surfaces, nullptr, options}};
+          {volume, view, surfaces, nullptr, options},
+          false,
+          {},
+          local_lights(options.lights, volume.origin),
+          lit,
+          shadow_terms};
   f.shade.surface_of_sorted = f.surface_of_sorted;
+  f.smooth = options.smooth && volume.gradients.size() == volume.vertices.size() &&
+             !volume.vertices.empty();
   f.isos.count = static_cast<int>(std::min<std::size_t>(surfaces.size(), kMaxIsovalues));
   std::iota(f.surface_of_sorted, f.surface_of_sorted + f.isos.count, 0);
   std::sort(f.surface_of_sorted, f.surface_of_sorted + f.isos.count,
             [&](int a, int b) { return surfaces[a].value < surfaces[b].value; });
   for (int k = 0; k < f.isos.count; ++k) f.isos.values[k] = surfaces[f.surface_of_sorted[k]].value;
+  const bool clipped = !options.clip.empty();
+  if (clipped) {
+    f.clip = LocalClip(options.clip, volume.origin, f.extent.magnitude);
+    clip_extent(f.extent, f.clip, static_cast<Vec3f>(view.eye - volume.origin));
+  }
   if (stats) *stats = {};
   const bool collect = options.collect_stats && stats;
   switch (options.packet) {
     case PacketSize::single:
-      trace_with<1>(f, image, collect, stats);
+      trace_with<1>(f, image, clipped, collect, stats);
       break;
     case PacketSize::p8x8:
-      trace_with<8>(f, image, collect, stats);
+      trace_with<8>(f, image, clipped, collect, stats);
       break;
     case PacketSize::p16x16:
-      trace_with<16>(f, image, collect, stats);
+      trace_with<16>(f, image, clipped, collect, stats);
       break;
     case PacketSize::p32x32:
-      trace_with<32>(f, image, collect, stats);
+      trace_with<32>(f, image, clipped, collect, stats);
       break;
   }
 }

@@ -6,12 +6,15 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/camera.hpp"
+#include "render/trace/clip_region.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_set.hpp"
+#include "render/trace/lights.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
@@ -62,6 +65,15 @@ struct TraceOptions {
   bool collect_stats = false;  // off: the hot path pays nothing for counting
   ColorBy color_by{};
   float ambient = 0.15f;  // Lambert headlight: color * (ambient + (1 - ambient) |cos|)
+  // Normals from the interpolated vertex gradients (TetVolume::gradients; flat where they are
+  // missing) instead of each isopolygon's plane.
+  bool smooth = false;
+  // Only the part of space this region keeps is drawn (Wald et al. 2007, §7); empty: all of it,
+  // at no cost.
+  ClipRegion clip{};
+  // Beyond a lone headlight, each light's term is computed per hit; a shadowing light's term is
+  // also written apart (trace_into's shadow_terms) for apply_shadows once visibility is known.
+  Lights lights{};
 };
 
 // Traces every pixel of `camera` against `volume`/`bvh` for up to kMaxIsovalues isosurfaces
@@ -73,8 +85,11 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
 
 // The same into `image`, whose storage is reused when it already has the camera's size (every
 // pixel is written, so no clearing pass): the form for a time loop.
+// With shadowing lights, shadow_terms (when given) receives one image per shadowing light, in the
+// order of options.lights: the part of each pixel's color that light contributes, with the
+// image's depth and hit keys, so that depth compositing picks the same winner in all of them.
 void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                 std::span<const IsoSurface> surfaces, const TraceOptions& options,
-                TraceStats* stats = nullptr);
+                TraceStats* stats = nullptr, std::vector<Framebuffer>* shadow_terms = nullptr);
 
 }  // namespace tetray::render

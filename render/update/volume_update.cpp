@@ -9,6 +9,7 @@
 
 #include "render/core/stopwatch.hpp"
 #include "render/core/value_bounds.hpp"
+#include "render/update/vertex_gradients.hpp"
 #include "render/volume/point_read.hpp"
 
 namespace tetray::render {
@@ -128,10 +129,12 @@ UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64
   volume.origin = origin ? *origin : center_of_points(points);
   volume.point_vertex.clear();
   volume.color_field.clear();
+  volume.gradients.clear();
   ingest(volume, points, field, true, true);
   const double ingest_ms = watch.ms();
   UpdateResult result = rebuild(volume, bvh, policy);
   result.ingest_refit_ms = ingest_ms;
+  if (policy.vertex_gradients) compute_vertex_gradients(volume);
   return result;
 }
 
@@ -153,6 +156,8 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
     result.ingest_refit_ms = refit_ms;
     result.quality_ratio = ratio;
   }
+  // After a rebuild too: it renumbers the vertices.
+  if (policy.vertex_gradients) compute_vertex_gradients(volume);
   return result;
 }
 

@@ -21,6 +21,7 @@ const char* to_string(BvhUpdateKind kind);
 struct UpdatePolicy {
   double rebuild_ratio = 1.5;  // rebuild when SAH cost / cost at build exceeds this
   BvhBuildOptions build{};
+  bool vertex_gradients = false;  // keep TetVolume::gradients current (smooth shading)
 };
 
 struct UpdateResult {

@@ -35,11 +35,13 @@ struct TetVolume {
   std::vector<Tet> tets;                    // in BVH leaf order once a BVH is built
   std::vector<std::uint32_t> tet_ids;       // caller's id of tets[k]
   std::vector<float> color_field;           // optional per-vertex field to color by (empty: none)
+  std::vector<Vec3f> gradients;             // per-vertex field gradient for smooth shading
+                                            // (empty: flat shading only)
 
   std::size_t bytes() const {
     return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +
            (tet_ids.capacity() + point_vertex.capacity()) * sizeof(std::uint32_t) +
-           color_field.capacity() * sizeof(float);
+           color_field.capacity() * sizeof(float) + gradients.capacity() * sizeof(Vec3f);
   }
 };
 

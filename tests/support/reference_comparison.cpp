@@ -144,7 +144,8 @@ AgreementCounts compare_with_reference(const render::Framebuffer& image,
       reporter.report("malformed pixel", p, ref);
       continue;
     }
-    if (ref.isopolygon_edge_distance < kGrazingDistance) {
+    if (ref.isopolygon_edge_distance < kGrazingDistance ||
+        ref.clip_boundary_distance < kClipBoundaryDistance) {
       ++counts.grazing_exempt;
       continue;
     }

@@ -17,6 +17,9 @@ namespace tetray::test {
 
 inline constexpr double kDepthTolerance = 1e-5;  // relative
 inline constexpr double kShadeTolerance = 2e-3;  // absolute, per channel
+// Relative distance of a hit from a clip plane below which keeping it or not is float rounding
+// (the renderer tests the hit point in float).
+inline constexpr double kClipBoundaryDistance = 1e-5;
 
 struct AgreementCounts {
   std::size_t pixels = 0;

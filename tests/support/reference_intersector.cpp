@@ -60,14 +60,16 @@ std::vector<ReferenceTet> reference_tets(const render::TetVolume& volume) {
 }
 
 ReferenceIntersector::ReferenceIntersector(const render::TetVolume& volume,
-                                           std::vector<double> isovalues)
+                                           std::vector<double> isovalues,
+                                           const render::ClipRegion& clip)
     : origin_(volume.origin),
       extent_(tets_diagonal(volume)),
       tets_(reference_tets(volume)),
-      isovalues_(std::move(isovalues)) {}
+      isovalues_(std::move(isovalues)),
+      clip_(clip, volume.origin),
+      clipped_(!clip.empty()) {}
 
-ReferenceHit ReferenceIntersector::trace_ray(const ReferenceCamera& camera,
-                                             Vec3d direction) const {
+ReferenceHit ReferenceIntersector::trace_ray(const ReferenceCamera& camera, Vec3d direction) const {
   const Ray ray{camera.eye() - origin_, direction};
   ReferenceHit result;
   result.length_scale = std::max(length(ray.origin), extent_);
@@ -76,15 +78,26 @@ ReferenceHit ReferenceIntersector::trace_ray(const ReferenceCamera& camera,
   // Pass 1: the nearest two hits, and the tets close enough to matter for pass 2.
   std::vector<std::pair<double, const ReferenceTet*>> near_tets;  // with their reach
   NearestTwo nearest;
+  std::vector<std::pair<double, double>> clip_candidates;  // every hit: t, distance to the clip
   for (const ReferenceTet& tet : tets_) {
     const std::optional<double> reach = tet.reach(ray, pad);
     if (!reach) continue;
     near_tets.emplace_back(*reach, &tet);
     for (std::size_t s = 0; s < isovalues_.size(); ++s) {
-      if (const auto t = tet.intersect(ray, isovalues_[s])) {
-        nearest.offer(*t, &tet, static_cast<int>(s));
+      const auto t = tet.intersect(ray, isovalues_[s]);
+      if (!t) continue;
+      if (clipped_) {
+        const Vec3d point = ray.origin + *t * ray.direction;
+        clip_candidates.emplace_back(*t, clip_.boundary_distance(point));
+        if (!clip_.keeps(point)) continue;
       }
+      nearest.offer(*t, &tet, static_cast<int>(s));
     }
+  }
+  for (const auto& [t, distance] : clip_candidates) {
+    if (t > nearest.t * (1 + 1e-5) + pad) continue;
+    result.clip_boundary_distance =
+        std::min(result.clip_boundary_distance, distance / result.length_scale);
   }
   const auto depth_at = [&](double t) {
     return t == ReferenceHit::kNone ? t : camera.depth(camera.eye() + t * direction);
@@ -127,6 +140,33 @@ std::vector<ReferenceHit> ReferenceIntersector::trace_image(const render::Camera
     }
   });
   return hits;
+}
+
+ReferenceShadow ReferenceIntersector::shadow_ray(Vec3d from, Vec3d direction, double t_min,
+                                                 double t_max) const {
+  const Ray ray{from, direction};
+  const double scale = std::max(length(from), extent_);
+  const double pad = 2 * kGrazingDistance * scale;
+  ReferenceShadow result;
+  for (const ReferenceTet& tet : tets_) {
+    const std::optional<double> reach = tet.reach(ray, pad);
+    if (!reach || *reach > t_max + pad) continue;
+    for (const double iso : isovalues_) {
+      result.isopolygon_edge_distance = std::min(
+          result.isopolygon_edge_distance, tet.isopolygon_edge_distance(ray, t_max, iso) / scale);
+      const auto t = tet.intersect(ray, iso);
+      if (!t || *t <= t_min || *t >= t_max) continue;
+      const Vec3d point = ray.origin + *t * ray.direction;
+      if (clipped_) {
+        result.clip_boundary_distance =
+            std::min(result.clip_boundary_distance, clip_.boundary_distance(point) / scale);
+        if (!clip_.keeps(point)) continue;
+      }
+      result.blocked = true;
+      result.nearest_t = std::min(result.nearest_t, *t);
+    }
+  }
+  return result;
 }
 
 BelowLevelProbe::BelowLevelProbe(const render::TetVolume& volume, double level)

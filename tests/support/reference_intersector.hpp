@@ -10,6 +10,7 @@
 
 #include "render/volume/tet_volume.hpp"
 #include "support/reference_camera.hpp"
+#include "support/reference_clip.hpp"
 #include "support/reference_tet.hpp"
 
 namespace tetray::test {
@@ -35,6 +36,21 @@ struct ReferenceHit {
   double isopolygon_edge_distance = kNone;
   double tet_edge_distance = kNone;
   double length_scale = 0;  // float rounding in the renderer scales with this length
+  // With a clip region: the smallest relative distance from the region's planes of the hits
+  // up to the nearest kept one (all hits on a miss); near a plane, keep or discard is rounding.
+  double clip_boundary_distance = kNone;
+};
+
+// A shadow ray of the reference: whether a surface lies on the segment, and how close the
+// decision is to rounding.
+struct ReferenceShadow {
+  bool blocked = false;
+  double nearest_t = ReferenceHit::kNone;  // of a blocking hit
+  // Relative (to the intersector's length scale) distances from the segment to the nearest
+  // isopolygon edge, and of its hits from a clip plane: below the renderer's rounding either
+  // answer is right.
+  double isopolygon_edge_distance = ReferenceHit::kNone;
+  double clip_boundary_distance = ReferenceHit::kNone;
 };
 
 // Copies the tets of `volume` to double precision with their caller ids.
@@ -42,18 +58,26 @@ std::vector<ReferenceTet> reference_tets(const render::TetVolume& volume);
 
 class ReferenceIntersector {
  public:
-  ReferenceIntersector(const render::TetVolume& volume, std::vector<double> isovalues);
+  // Only hits in the clip region count (with the default region: all).
+  ReferenceIntersector(const render::TetVolume& volume, std::vector<double> isovalues,
+                       const render::ClipRegion& clip = {});
 
   ReferenceHit trace_ray(const ReferenceCamera& camera, Vec3d direction) const;
   // One ReferenceHit per pixel, row-major from the top-left (Framebuffer::index), computed in
   // parallel over rows.
   std::vector<ReferenceHit> trace_image(const render::Camera& camera) const;
+  // The segment from `from` (local coordinates) along the unit `direction` over (t_min, t_max),
+  // against every isosurface inside the clip region.
+  ReferenceShadow shadow_ray(Vec3d from, Vec3d direction, double t_min, double t_max) const;
+  double length_scale() const { return extent_; }
 
  private:
   Vec3d origin_;
   double extent_;  // diagonal of the tets' bounding box
   std::vector<ReferenceTet> tets_;
   std::vector<double> isovalues_;
+  ReferenceClip clip_;
+  bool clipped_ = false;
 };
 
 // Decides whether a ray's exact path (t >= 0) passes through a point of some tet where the

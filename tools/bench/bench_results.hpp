@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_shading.hpp"
 #include "bench_walk.hpp"
 #include "render/trace/trace.hpp"
 
@@ -69,6 +70,7 @@ struct SceneFigures {
   ReferenceFigures ref;
   RefitFigures refit;
   WalkFigures walk;
+  ShadingFigures shading;
 
   const PacketFigures& packet(render::PacketSize size) const;
 };

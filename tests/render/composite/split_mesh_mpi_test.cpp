@@ -19,6 +19,8 @@
 #include "composite_test_images.hpp"
 #include "render/composite/composite.hpp"
 #include "render/composite/global_reduce.hpp"
+#include "render/composite/shadow_visibility.hpp"
+#include "render/trace/shadow_rays.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "support/render_fixtures.hpp"
@@ -153,6 +155,96 @@ TEST(SplitMesh, RandomTetPartitionMatchesTheWholeMesh) {
 TEST(SplitMesh, EmptyRootMatchesTheWholeMesh) {
   const int size = world().size;
   check_split(size == 1 ? slabs(0, 1) : slabs(1, size - 1), "slabs leaving rank 0 empty");
+}
+
+}  // namespace
+}  // namespace tetray::render
+
+namespace tetray::render {
+namespace {
+
+// Shadows and clipping across ranks (render/composite/shadow_visibility.hpp): each rank traces
+// its piece with a shadowing point and directional light inside a clip region, the image and the
+// lights' terms are composited, every rank traces the shadow rays of the composited hit points
+// against its own tets, the occlusion bits are ORed onto the root, which shades. The result must
+// be the image of one rank doing the same with the whole mesh.
+TraceOptions lit_and_clipped() {
+  TraceOptions options;
+  options.clip.has_box = true;
+  options.clip.box_lo = {-1.5, -1.5, -1.5};
+  options.clip.box_hi = {0.3, 1.5, 1.5};
+  options.clip.planes[0] = {{0, 0.5, 0}, {0.2, 1, 0.1}};
+  options.clip.plane_count = 1;
+  options.lights.count = 3;
+  options.lights.light[0] = {LightKind::headlight, {}, false};
+  options.lights.light[1] = {LightKind::point, {2.0, 3.0, 1.5}, true};
+  options.lights.light[2] = {LightKind::directional, {-1.0, -0.4, -2.0}, true};
+  return options;
+}
+
+struct ShadowedImage {
+  Framebuffer image;
+  std::vector<std::uint8_t> occluded;  // on the root
+};
+
+ShadowedImage shadowed_piece(const MeshPiece& piece, Vec3d origin, MPI_Comm comm) {
+  TetVolume volume;
+  Bvh bvh;
+  const PointSource points{piece.points.data(), ScalarKind::f64, nullptr, ScalarKind::f64,
+                           piece.field.size()};
+  const FieldSource field{piece.field.data(), ScalarKind::f64, piece.field.size()};
+  load_volume(volume, bvh, piece.tets, {}, piece.ids, points, field, {}, &origin);
+  const IsoSurface surfaces[] = {IsoSurface{0.0f, {0.9f, 0.6f, 0.3f}}, IsoSurface{0.5f, {}}};
+  const Camera camera = test::benchmark_camera(kImageSide / 2);
+  const TraceOptions options = lit_and_clipped();
+  ShadowedImage out;
+  std::vector<Framebuffer> terms;
+  trace_into(out.image, volume, bvh, camera, surfaces, options, nullptr, &terms);
+  EXPECT_EQ(terms.size(), 2u);
+  EXPECT_EQ(composite(out.image, comm, {}), MPI_SUCCESS);
+  for (Framebuffer& term : terms) EXPECT_EQ(composite(term, comm, {}), MPI_SUCCESS);
+  std::vector<float> depth(out.image.depth.begin(), out.image.depth.end());
+  EXPECT_EQ(share_composited_depth(depth, 0, comm), MPI_SUCCESS);
+  out.occluded = trace_shadow_rays(volume, bvh, camera, surfaces, options, depth);
+  EXPECT_EQ(combine_occlusion(out.occluded, 0, comm), MPI_SUCCESS);
+  apply_shadows(out.image, terms, out.occluded);
+  return out;
+}
+
+void check_shadowed_split(const Partition& owner, const std::string& what) {
+  const World w = world();
+  const MeshPiece piece = piece_of(scene(), owner, w.rank);
+  BoundingBox box = local_bounds<double>(piece.points);
+  ASSERT_EQ(global_bounds_and_ranges(box, {}, MPI_COMM_WORLD), MPI_SUCCESS);
+  const Vec3d origin = 0.5 * (box.lo() + box.hi());
+  const ShadowedImage split = shadowed_piece(piece, origin, MPI_COMM_WORLD);
+  if (w.rank != 0) return;
+  const ShadowedImage whole = shadowed_piece(piece_of(
+                                                 scene(), [](std::size_t) { return 0; }, 0),
+                                             origin, MPI_COMM_SELF);
+  std::size_t shadowed = 0, lit = 0, occlusion_differences = 0, color_differences = 0;
+  for (std::size_t p = 0; p < whole.image.pixel_count(); ++p) {
+    if (whole.image.hit[p] == kNoHit) continue;
+    shadowed += whole.occluded[p] != 0;
+    lit += whole.occluded[p] == 0;
+    if (split.image.depth[p] != whole.image.depth[p]) continue;  // counted by check_split
+    occlusion_differences += split.occluded[p] != whole.occluded[p];
+    color_differences += split.image.hit[p] == whole.image.hit[p] &&
+                         !std::equal(&split.image.rgba[4 * p], &split.image.rgba[4 * p + 4],
+                                     &whole.image.rgba[4 * p]);
+  }
+  EXPECT_GT(shadowed, whole.image.pixel_count() / 50) << what << ": the view must show shadows";
+  EXPECT_GT(lit, whole.image.pixel_count() / 50) << what;
+  EXPECT_EQ(occlusion_differences, 0u) << what;
+  EXPECT_EQ(color_differences, 0u) << what;
+}
+
+TEST(SplitMeshShadows, SlabsMatchTheWholeMesh) {
+  check_shadowed_split(slabs(0, world().size), "slabs");
+}
+
+TEST(SplitMeshShadows, RandomTetPartitionMatchesTheWholeMesh) {
+  check_shadowed_split(random_partition(world().size), "random partition");
 }
 
 }  // namespace

@@ -1,0 +1,17 @@
+// The scene keys of the shading modalities (docs/architecture.md §4, Wald et al. 2007, §7), after
+// validation: smooth or flat normals, the clip region and the lights. config_shading_parse.hpp
+// reads them from the YAML.
+#pragma once
+
+#include "render/trace/clip_region.hpp"
+#include "render/trace/lights.hpp"
+
+namespace tetray::config {
+
+struct ShadingSpec {
+  bool smooth = false;        // field-gradient normals interpolated at the hit; flat by default
+  render::ClipRegion clip{};  // world coordinates; empty: nothing clipped
+  render::Lights lights{};    // world coordinates; none: the headlight alone
+};
+
+}  // namespace tetray::config

@@ -1,0 +1,21 @@
+// Parsing of the shading keys of a scene (config_shading.hpp) for config_parse.cpp.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "config_shading.hpp"
+#include "yaml_reader.hpp"
+
+namespace tetray::config {
+
+// Reads the shading keys of the scene map `scene` (key path `key`) that are present.
+void parse_shading(const YamlReader& r, const YAML::Node& scene, const std::string& key,
+                   ShadingSpec& spec);
+
+// Reads the scene's `lights` list (key path `key`) into spec.lights and the ambient term.
+void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                  float& ambient, ShadingSpec& spec);
+
+}  // namespace tetray::config

@@ -1,0 +1,39 @@
+// Shadow rays (Wald et al. 2007, §7): from each hit point of a composited image towards each
+// shadowing light, any-hit with early out, through the one traversal (packet_traversal.hpp) and
+// leaf operation (leaf_intersect.hpp). Rays towards a point light share its position as their
+// origin, so they travel as packets from the light to the hit points, culled by the interval
+// test of the traversal (Wald et al. 2007, §5.2 III: no corner rays); rays towards a directional
+// light share no origin and travel one by one.
+//
+// The hit points come from the image's depth alone, so every rank, given the same composited
+// depth, traces the same rays against its own tets, and "occluded" is a logical OR over the ranks
+// (render/composite/shadow_visibility.hpp): the image is the same for any rank count.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "render/bvh/bvh.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/camera.hpp"
+#include "render/trace/trace.hpp"
+#include "render/volume/tet_volume.hpp"
+
+namespace tetray::render {
+
+// Per pixel of `depth` (the composited image's, row-major; +infinity where nothing was hit), bit
+// j set when a surface of `surfaces` in `volume` (within options.clip) lies between the hit
+// point and shadowing light j of options.lights (in their order). At most 8 shadowing lights.
+std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& bvh,
+                                            const Camera& camera,
+                                            std::span<const IsoSurface> surfaces,
+                                            const TraceOptions& options,
+                                            std::span<const float> depth);
+
+// Removes from each pixel of `image` the part of its color each occluded light gave
+// (shadow_terms[j], written by trace_into with the same options and composited like the image).
+void apply_shadows(Framebuffer& image, std::span<const Framebuffer> shadow_terms,
+                   std::span<const std::uint8_t> occluded);
+
+}  // namespace tetray::render

@@ -1,0 +1,101 @@
+// Clipping and shadows through the adaptor on a split mesh: the gyroid-twist scene with a clip
+// box and plane, a shadowing point light and a shadowing directional light, rendered by rank 0
+// alone and by all ranks with the tets split into slabs, gives the same PNG (pixels that differ
+// only where two tets tie in depth, as in tests/render/composite/split_mesh_mpi_test.cpp), and
+// the shadows are there: the image differs from the one without them.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "shared_dir.hpp"
+#include "support/png_read.hpp"
+#include "tetray/adaptor.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace tetray::testing {
+namespace {
+
+const GyroidTwist& scene() {
+  static const GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
+  return gyroid;
+}
+
+std::string config(const std::string& directory, bool shadows) {
+  const std::string on = shadows ? "true" : "false";
+  return "output: {directory: " + directory +
+         ", formats: [png], quiet: true}\n"
+         "scenes:\n"
+         "  - name: lit\n"
+         "    field: f\n"
+         "    isovalues: [0, 0.5]\n"
+         "    camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n"
+         "    image: {width: 96, height: 96}\n"
+         "    clip:\n"
+         "      box: {min: [-2, -2, -2], max: [0.3, 2, 2]}\n"
+         "      planes: [{point: [0, 0.5, 0], normal: [0.2, 1, 0.1]}]\n"
+         "    lights: [{type: headlight},\n"
+         "             {type: point, position: [2, 3, 1.5], shadows: " +
+         on +
+         "},\n"
+         "             {type: directional, direction: [-1, -0.4, -2], shadows: " +
+         on + "}]\n";
+}
+
+// The tets whose centroid's x falls in this rank's slab.
+std::vector<std::int64_t> slab(int rank, int ranks) {
+  const GyroidTwist& g = scene();
+  std::vector<std::int64_t> tets;
+  for (std::size_t t = 0; t < g.mesh.tet_count(); ++t) {
+    double x = 0;
+    for (int k = 0; k < 4; ++k) x += g.mesh.points[3 * g.mesh.tets[4 * t + k]] / 4;
+    const int owner = std::clamp(static_cast<int>((x + 1) / 2 * ranks), 0, ranks - 1);
+    if (owner != rank) continue;
+    tets.insert(tets.end(), &g.mesh.tets[4 * t], &g.mesh.tets[4 * t + 4]);
+  }
+  return tets;
+}
+
+void render(MPI_Comm comm, const std::string& directory, bool shadows,
+            const std::vector<std::int64_t>& tets) {
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, shadows), status);
+  ASSERT_TRUE(adaptor) << status.message;
+  MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
+                TetsView::of(std::span<const std::int64_t>(tets))};
+  const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().field))};
+  status = adaptor->execute(0, 0, mesh, fields);
+  ASSERT_TRUE(status.ok()) << status.message;
+  ASSERT_TRUE(adaptor->finalize().ok());
+}
+
+std::size_t differing_pixels(const PngPixels& a, const PngPixels& b) {
+  std::size_t count = 0;
+  for (std::size_t p = 0; p + 3 < a.rgba.size() && p + 3 < b.rgba.size(); p += 4)
+    count += !std::equal(&a.rgba[p], &a.rgba[p + 4], &b.rgba[p]);
+  return count;
+}
+
+TEST(ShadingAcrossRanks, ClipAndShadowsGiveTheImageOfOneRank) {
+  const SharedDir shared("shading_across_ranks");
+  if (rank() == 0) {
+    render(MPI_COMM_SELF, shared.path() + "/one", true, scene().mesh.tets);
+    render(MPI_COMM_SELF, shared.path() + "/unshadowed", false, scene().mesh.tets);
+  }
+  render(MPI_COMM_WORLD, shared.path() + "/split", true, slab(rank(), world_size()));
+  if (rank() != 0) return;
+  const PngPixels one = read_png_rgba8(shared.path() + "/one/lit/lit_000000.png");
+  const PngPixels split = read_png_rgba8(shared.path() + "/split/lit/lit_000000.png");
+  const PngPixels unshadowed = read_png_rgba8(shared.path() + "/unshadowed/lit/lit_000000.png");
+  ASSERT_TRUE(one.error.empty() && split.error.empty() && unshadowed.error.empty())
+      << one.error << split.error << unshadowed.error;
+  ASSERT_EQ(one.rgba.size(), split.rgba.size());
+  const std::size_t pixels = one.rgba.size() / 4;
+  EXPECT_LE(differing_pixels(one, split), pixels / 1000);
+  EXPECT_GT(differing_pixels(one, unshadowed), pixels / 20) << "the lights must cast shadows";
+}
+
+}  // namespace
+}  // namespace tetray::testing

@@ -1,0 +1,128 @@
+// Smooth shading: normals from the field's vertex gradients, interpolated at the hit. For a
+// linear field the vertex gradients are the field's gradient exactly; on the level set of
+// |x| (a sphere) the shaded normal must follow the analytic sphere normal far more closely than
+// the flat per-isopolygon normal, which shows the mesh as facets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "render/update/vertex_gradients.hpp"
+#include "support/reference_camera.hpp"
+#include "support/reference_comparison.hpp"
+#include "support/render_fixtures.hpp"
+
+namespace tetray::test {
+namespace {
+
+constexpr double kRadius = 0.6;
+
+TEST(VertexGradients, ExactForALinearField) {
+  const BoxMesh box = jittered_box(4);
+  const Vec3d g{0.3, -1.2, 2.5};
+  const auto f = sample_field(box.points, [&](Vec3d p) { return dot(g, p) + 0.7; });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  render::compute_vertex_gradients(scene.volume);
+  ASSERT_EQ(scene.volume.gradients.size(), scene.volume.vertices.size());
+  for (const render::Vec3f& v : scene.volume.gradients) {
+    EXPECT_NEAR(v.x, g.x, 1e-4);
+    EXPECT_NEAR(v.y, g.y, 1e-4);
+    EXPECT_NEAR(v.z, g.z, 1e-4);
+  }
+}
+
+TEST(VertexGradients, KeptCurrentByTheUpdateWhenAsked) {
+  const BoxMesh box = jittered_box(3);
+  const auto f = sample_field(box.points, [](Vec3d p) { return p.x; });
+  render::UpdatePolicy policy;
+  policy.vertex_gradients = true;
+  RenderScene scene = load_scene(box.points, box.tets, f, policy);
+  ASSERT_EQ(scene.volume.gradients.size(), scene.volume.vertices.size());
+  EXPECT_NEAR(scene.volume.gradients[0].x, 1.0, 1e-5);
+  const auto g = sample_field(box.points, [](Vec3d p) { return -2 * p.y; });
+  render::update_volume(scene.volume, scene.bvh,
+                        {box.points.data(), render::ScalarKind::f64, nullptr,
+                         render::ScalarKind::f64, box.point_count()},
+                        {g.data(), render::ScalarKind::f64, g.size()}, {false, true}, policy);
+  for (const render::Vec3f& v : scene.volume.gradients) {
+    EXPECT_NEAR(v.x, 0.0, 1e-5);
+    EXPECT_NEAR(v.y, -2.0, 1e-5);
+  }
+}
+
+struct AngleErrors {
+  double mean = 0, max = 0;
+  std::size_t pixels = 0;
+};
+
+// With white surfaces and no ambient light a pixel shows |cos| of the angle between its ray and
+// the shading normal; the difference to the angle the analytic sphere normal makes bounds the
+// normal's angular error from below, pixel by pixel.
+AngleErrors sphere_angle_errors(bool smooth) {
+  const BoxMesh box = jittered_box(32);
+  const auto f = sample_field(box.points, [](Vec3d p) { return length(p); });
+  render::UpdatePolicy policy;
+  policy.vertex_gradients = smooth;
+  RenderScene scene = load_scene(box.points, box.tets, f, policy);
+  const render::Camera camera = look_at({0.4, 0.9, 2.6}, {0, 0, 0}, 30, 96, 96);
+  render::TraceOptions options;
+  options.ambient = 0;
+  options.smooth = smooth;
+  const render::IsoSurface surfaces[] = {{static_cast<float>(kRadius), {1, 1, 1}}};
+  const render::Framebuffer image =
+      render::trace(scene.volume, scene.bvh, camera, surfaces, options);
+  const ReferenceCamera rays(camera);
+  AngleErrors errors;
+  for (int j = 0; j < camera.height; ++j)
+    for (int i = 0; i < camera.width; ++i) {
+      const std::size_t p = image.index(i, j);
+      if (image.hit[p] == render::kNoHit) continue;
+      // The ray's nearest crossing of the analytic sphere, away from its silhouette.
+      const Vec3d d = rays.pixel_direction(i, j), e = camera.eye;
+      const double b = dot(e, d), c = dot(e, e) - kRadius * kRadius, disc = b * b - c;
+      if (disc <= 0.05 * kRadius * kRadius) continue;
+      const Vec3d hit = e + (-b - std::sqrt(disc)) * d;
+      const double expected = std::acos(std::abs(dot(d, normalize(hit))));
+      const double shown = std::acos(std::clamp(double(image.rgba[4 * p]), 0.0, 1.0));
+      const double error = std::abs(shown - expected);
+      errors.mean += error;
+      errors.max = std::max(errors.max, error);
+      ++errors.pixels;
+    }
+  errors.mean /= static_cast<double>(std::max<std::size_t>(errors.pixels, 1));
+  return errors;
+}
+
+TEST(SmoothShading, SphereNormalsFollowTheAnalyticNormalFarBetterThanFlat) {
+  const AngleErrors flat = sphere_angle_errors(false), smooth = sphere_angle_errors(true);
+  constexpr double kDegree = std::numbers::pi / 180;
+  std::printf(
+      "sphere normal angle error: flat mean %.3f max %.3f deg, smooth mean %.3f max %.3f "
+      "deg over %zu pixels\n",
+      flat.mean / kDegree, flat.max / kDegree, smooth.mean / kDegree, smooth.max / kDegree,
+      smooth.pixels);
+  ASSERT_GT(smooth.pixels, 2000u);
+  EXPECT_EQ(smooth.pixels, flat.pixels);
+  // Measured: flat 1.34 mean, 5.4 max; smooth 0.34, 1.3 (the smooth error falls with h^2, the
+  // flat one with h).
+  EXPECT_GT(flat.mean, 1.0 * kDegree);  // the facets are there to be removed
+  EXPECT_LT(smooth.mean, 0.5 * kDegree);
+  EXPECT_LT(smooth.mean, 0.35 * flat.mean);
+  EXPECT_LT(smooth.max, 0.35 * flat.max);
+}
+
+TEST(SmoothShading, WithoutGradientsItStaysFlat) {
+  const BoxMesh box = jittered_box(4);
+  const auto f = sample_field(box.points, [](Vec3d p) { return length(p); });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  const render::Camera camera = look_at({0.4, 0.9, 2.6}, {0, 0, 0}, 30, 32, 32);
+  const render::IsoSurface surfaces[] = {{0.6f, {1, 1, 1}}};
+  render::TraceOptions smooth;
+  smooth.smooth = true;
+  const auto a = render::trace(scene.volume, scene.bvh, camera, surfaces, {});
+  const auto b = render::trace(scene.volume, scene.bvh, camera, surfaces, smooth);
+  EXPECT_EQ(image_difference(a, b), "");
+}
+
+}  // namespace
+}  // namespace tetray::test

@@ -1,0 +1,96 @@
+#include "bench_shading.hpp"
+
+#include <array>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+#include "bench_scene.hpp"
+#include "bench_timing.hpp"
+#include "render/trace/shadow_rays.hpp"
+#include "tools/bench_common/json_file.hpp"
+
+namespace tetray::bench {
+namespace {
+
+render::TraceOptions with_point_light() {
+  render::TraceOptions options;
+  options.lights.count = 2;
+  options.lights.light[0] = {render::LightKind::headlight, {}, false};
+  options.lights.light[1] = {render::LightKind::point, {3.0, 4.0, 2.0}, true};
+  return options;
+}
+
+render::TraceOptions with_half_clipped() {
+  render::TraceOptions options;
+  options.clip.has_box = true;
+  options.clip.box_lo = {-2, -2, -2};
+  options.clip.box_hi = {0, 2, 2};
+  return options;
+}
+
+}  // namespace
+
+ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& camera) {
+  render::TetVolume volume;
+  render::Bvh bvh;
+  render::UpdatePolicy policy;
+  policy.vertex_gradients = true;  // for the smooth frame; the others do not read them
+  load_scene(scene, volume, bvh, policy);
+  const render::IsoSurface surface = bench_surface();
+  const std::span<const render::IsoSurface> surfaces{&surface, 1};
+  render::Framebuffer image;
+  std::vector<render::Framebuffer> terms;
+  std::vector<std::uint8_t> occluded;
+  const render::TraceOptions plain{}, lit = with_point_light(), clipped = with_half_clipped();
+  render::TraceOptions smooth;
+  smooth.smooth = true;
+  const auto frame = [&](const render::TraceOptions& options) {
+    return [&, options] {
+      return time_ms([&] { render::trace_into(image, volume, bvh, camera, surfaces, options); });
+    };
+  };
+  const auto shadowed_frame = [&] {
+    return time_ms([&] {
+      render::trace_into(image, volume, bvh, camera, surfaces, lit, nullptr, &terms);
+      occluded = render::trace_shadow_rays(volume, bvh, camera, surfaces, lit, image.depth);
+      render::apply_shadows(image, terms, occluded);
+    });
+  };
+  frame(plain)();  // warm-up
+  const std::array<double, 4> best = best_in_turn_ms<4>(
+      kRepetitions,
+      {frame(plain), std::function<double()>(shadowed_frame), frame(clipped), frame(smooth)});
+  ShadingFigures figures{best[0], best[1], best[2], best[3], 0};
+  std::size_t hits = 0, shadowed = 0;
+  shadowed_frame();
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    hits += image.hit[p] != render::kNoHit;
+    shadowed += image.hit[p] != render::kNoHit && occluded[p] != 0;
+  }
+  figures.shadowed_fraction = hits ? static_cast<double>(shadowed) / static_cast<double>(hits) : 0;
+  return figures;
+}
+
+void print_shading(const ShadingFigures& f) {
+  std::printf(
+      "  shading        plain %.1f ms; shadowing point light %.1f ms (%.2fx, %.0f%% of the hits "
+      "in shadow); clip box keeping half %.1f ms (%.2fx); smooth normals %.1f ms (%.2fx)\n",
+      f.plain_ms, f.shadow_ms, f.shadow_ms / f.plain_ms, 100 * f.shadowed_fraction, f.clip_ms,
+      f.clip_ms / f.plain_ms, f.smooth_ms, f.smooth_ms / f.plain_ms);
+}
+
+Json::Value shading_json(const ShadingFigures& f) {
+  Json::Value json;
+  json["plain_ms"] = number(f.plain_ms);
+  json["shadow_point_light_ms"] = number(f.shadow_ms);
+  json["shadow_point_light_ratio"] = number(f.shadow_ms / f.plain_ms);
+  json["shadowed_fraction"] = number(f.shadowed_fraction);
+  json["clip_half_box_ms"] = number(f.clip_ms);
+  json["clip_half_box_ratio"] = number(f.clip_ms / f.plain_ms);
+  json["smooth_ms"] = number(f.smooth_ms);
+  json["smooth_ratio"] = number(f.smooth_ms / f.plain_ms);
+  return json;
+}
+
+}  // namespace tetray::bench

@@ -1,0 +1,27 @@
+// The shading modalities on the benchmark scene (Wald et al. 2007, §7, Fig. 7): the frame with a
+// shadowing point light (trace with its term, shadow rays from the hit points, shading), with a
+// clip box that removes half the volume, and with smooth normals, each timed in turn with the
+// plain frame in the same run and reported as a ratio to it.
+#pragma once
+
+#include <json/json.h>
+
+#include "render/trace/camera.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace tetray::bench {
+
+struct ShadingFigures {
+  double plain_ms = 0;
+  double shadow_ms = 0;  // headlight + a shadowing point light
+  double clip_ms = 0;    // a clip box keeping x <= 0
+  double smooth_ms = 0;
+  double shadowed_fraction = 0;  // of the hit pixels, in the shadow of the point light
+};
+
+// The default packets (render::TraceOptions), one rank.
+ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& camera);
+void print_shading(const ShadingFigures& figures);
+Json::Value shading_json(const ShadingFigures& figures);
+
+}  // namespace tetray::bench
