@@ -12,8 +12,10 @@
 
 namespace tetray::render::build {
 
-inline constexpr int kObjectMedianDepth = 48;  // below this depth split by count: depth stays bounded
-inline constexpr std::uint32_t kParallelGrain = 16384;  // ranges below this are scanned by one thread
+inline constexpr int kObjectMedianDepth =
+    48;  // below this depth split by count: depth stays bounded
+inline constexpr std::uint32_t kParallelGrain =
+    16384;  // ranges below this are scanned by one thread
 
 struct Range {
   std::uint32_t begin, end;

@@ -12,9 +12,8 @@ TransferFunction::Sample TransferFunction::at(double value) const {
   colormap->lookup(static_cast<float>(std::clamp(u, 0.0, 1.0)), rgb);
   for (int c = 0; c < 3; ++c) s.color[c] = rgb[c];
   // The point at or before `value` and the next one; constant beyond the ends.
-  const auto after = std::upper_bound(
-      opacity.begin(), opacity.end(), value,
-      [](double v, const OpacityPoint& p) { return v < p.value; });
+  const auto after = std::upper_bound(opacity.begin(), opacity.end(), value,
+                                      [](double v, const OpacityPoint& p) { return v < p.value; });
   double o = after == opacity.begin() ? opacity.front().opacity : opacity.back().opacity;
   if (after != opacity.begin() && after != opacity.end()) {
     const OpacityPoint& a = after[-1];

@@ -1,11 +1,6 @@
 // The writer's encoding end to end on one rank: the configured compressions reach the files, the
 // writer's thread count changes no byte, a movie per scene holds one frame per image, and a
 // movie that cannot be written is an error at the next render step, as an image's is.
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-}
-
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <gtest/gtest.h>
@@ -13,6 +8,7 @@ extern "C" {
 #include <filesystem>
 
 #include "plane_scene.hpp"
+#include "support/movie_read.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
@@ -22,66 +18,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Adaptor> make(const std::string& yaml) {
-  Status status;
-  auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status);
-  EXPECT_TRUE(status.ok()) << status.message;
-  return adaptor;
-}
-
-Status run(Adaptor& a, const PlaneScene& s, std::int64_t step) {
-  const auto fields = s.fields();
-  return a.execute(step, 0.1 * static_cast<double>(step), s.view(), fields, {});
-}
-
 // Steps 0..steps-1 of the plane scene, every one rendered, then finalize.
 void run_steps(const std::string& yaml, int steps) {
   const PlaneScene scene = make_plane_scene(4);
-  auto a = make(yaml);
+  auto a = make_adaptor(yaml);
   ASSERT_TRUE(a);
-  for (int step = 0; step < steps; ++step) ASSERT_TRUE(run(*a, scene, step).ok());
+  for (int step = 0; step < steps; ++step) ASSERT_TRUE(run_plane_step(*a, scene, step).ok());
   const Status finalized = a->finalize();
   ASSERT_TRUE(finalized.ok()) << finalized.message;
-}
-
-struct MovieFacts {
-  int frames = 0, width = 0, height = 0;
-  std::string codec;
-};
-
-// Decoded with FFmpeg's demuxer and decoder: how many frames, of which size.
-MovieFacts read_movie(const std::string& path) {
-  MovieFacts facts;
-  AVFormatContext* format = nullptr;
-  if (avformat_open_input(&format, path.c_str(), nullptr, nullptr) < 0) return facts;
-  avformat_find_stream_info(format, nullptr);
-  const AVCodec* decoder = nullptr;
-  const int stream = av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
-  AVCodecContext* codec = avcodec_alloc_context3(decoder);
-  avcodec_parameters_to_context(codec, format->streams[stream]->codecpar);
-  avcodec_open2(codec, decoder, nullptr);
-  facts.codec = decoder->name;
-  AVPacket* packet = av_packet_alloc();
-  AVFrame* frame = av_frame_alloc();
-  const auto receive = [&] {
-    while (avcodec_receive_frame(codec, frame) >= 0) {
-      ++facts.frames;
-      facts.width = frame->width;
-      facts.height = frame->height;
-    }
-  };
-  while (av_read_frame(format, packet) >= 0) {
-    if (packet->stream_index == stream) avcodec_send_packet(codec, packet);
-    av_packet_unref(packet);
-    receive();
-  }
-  avcodec_send_packet(codec, nullptr);
-  receive();
-  av_frame_free(&frame);
-  av_packet_free(&packet);
-  avcodec_free_context(&codec);
-  avformat_close_input(&format);
-  return facts;
 }
 
 TEST(AdaptorEncoding, ConfiguredCompressionsReachTheFiles) {
@@ -119,7 +63,7 @@ TEST(AdaptorEncoding, AMoviePerSceneWithAFramePerImage) {
   run_steps(plane_config(dir.path().string(), ", formats: [png, exr, mp4]", "trigger: {every: 2}\n",
                          "    background: [1, 1, 1]\n"),
             9);
-  const MovieFacts movie = read_movie(dir / "plane/plane_000000.mp4");
+  const DecodedMovie movie = decode_movie(dir / "plane/plane_000000.mp4");
   EXPECT_EQ(movie.codec, "h264");
   EXPECT_EQ(movie.frames, 5);  // steps 0, 2, 4, 6, 8
   EXPECT_EQ(movie.width, kImageWidth);
@@ -140,10 +84,11 @@ TEST(AdaptorEncoding, AnUnwritableMovieIsAnErrorAtTheNextStep) {
   ScratchDir dir;
   fs::create_directories(dir / "plane/plane_000000.mp4");
   const PlaneScene scene = make_plane_scene(4);
-  auto a = make(plane_config(dir.path().string(), ", formats: [png, mp4], writer_queue_depth: 0"));
+  auto a = make_adaptor(
+      plane_config(dir.path().string(), ", formats: [png, mp4], writer_queue_depth: 0"));
   ASSERT_TRUE(a);
-  ASSERT_TRUE(run(*a, scene, 0).ok());
-  const Status next = run(*a, scene, 1);
+  ASSERT_TRUE(run_plane_step(*a, scene, 0).ok());
+  const Status next = run_plane_step(*a, scene, 1);
   EXPECT_EQ(next.code, StatusCode::io_error);
   EXPECT_NE(next.message.find("plane_000000.mp4"), std::string::npos) << next.message;
   EXPECT_TRUE(fs::exists(dir / "plane/plane_000000.png"));

@@ -15,19 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Adaptor> make(const std::string& yaml) {
-  Status status;
-  auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status);
-  EXPECT_TRUE(status.ok()) << status.message;
-  return adaptor;
-}
-
-Status run(Adaptor& a, const PlaneScene& s, std::int64_t step, const Changes& c = {},
-           ExecuteReport* report = nullptr) {
-  const auto fields = s.fields();
-  return a.execute(step, 0.1 * static_cast<double>(step), s.view(), fields, c, report);
-}
-
 void expect_plane_hits(const std::string& hits) {
   const ExpectedHits expected = expected_plane_hits();
   const auto n = std::stoull(hits);
@@ -38,11 +25,11 @@ void expect_plane_hits(const std::string& hits) {
 TEST(AdaptorStep, WritesImagesLogAndCinemaWithAnalyticCoverage) {
   ScratchDir dir;
   const PlaneScene scene = make_plane_scene(4);
-  auto a = make(plane_config(dir.path().string(), "", "trigger: {every: 2}\n"));
+  auto a = make_adaptor(plane_config(dir.path().string(), "", "trigger: {every: 2}\n"));
   ASSERT_TRUE(a);
   for (int step = 0; step < 5; ++step) {
     ExecuteReport report;
-    ASSERT_TRUE(run(*a, scene, step, {}, &report).ok());
+    ASSERT_TRUE(run_plane_step(*a, scene, step, {}, &report).ok());
     EXPECT_EQ(report.rendered, step % 2 == 0);
   }
   ASSERT_TRUE(a->finalize().ok());
@@ -70,10 +57,10 @@ TEST(AdaptorStep, WriterThreadAndInlineWritesGiveTheSameFiles) {
   ScratchDir dir;
   const PlaneScene scene = make_plane_scene(4);
   for (const char* depth : {"0", "3"}) {
-    auto a = make(plane_config(dir / depth, std::string(", writer_queue_depth: ") + depth, "",
-                               "    background: [0.2, 0.3, 0.4]\n"));
+    auto a = make_adaptor(plane_config(dir / depth, std::string(", writer_queue_depth: ") + depth,
+                                       "", "    background: [0.2, 0.3, 0.4]\n"));
     ASSERT_TRUE(a);
-    for (int step = 0; step < 4; ++step) ASSERT_TRUE(run(*a, scene, step).ok());
+    for (int step = 0; step < 4; ++step) ASSERT_TRUE(run_plane_step(*a, scene, step).ok());
     ASSERT_TRUE(a->finalize().ok());
   }
   for (const char* name : {"plane_000003.png", "plane_000003.exr"}) {
@@ -90,7 +77,7 @@ TEST(AdaptorStep, ScenesSkipWhatTheyDoNotNeed) {
   const std::string colored =
       "  - {name: colored, field: f, isovalues: [0.25], color_by: g, image: {width: 32, "
       "height: 32}}\n";
-  auto a = make(plane_config(dir.path().string()) + colored);
+  auto a = make_adaptor(plane_config(dir.path().string()) + colored);
   ASSERT_TRUE(a);
   const std::vector<double> unused(scene.f.size(), std::numeric_limits<double>::quiet_NaN());
   auto fields = scene.fields();
@@ -124,14 +111,14 @@ TEST(AdaptorStep, ScenesSkipWhatTheyDoNotNeed) {
 TEST(AdaptorStep, ChangesOnOffTriggerStepsAreNotLost) {
   ScratchDir dir;
   PlaneScene scene = make_plane_scene(4);
-  auto a = make(plane_config(dir.path().string(), "", "trigger: {every: 2}\n"));
+  auto a = make_adaptor(plane_config(dir.path().string(), "", "trigger: {every: 2}\n"));
   ASSERT_TRUE(a);
-  ASSERT_TRUE(run(*a, scene, 0).ok());
+  ASSERT_TRUE(run_plane_step(*a, scene, 0).ok());
   // Move the isosurface out of view on an off step, then render with "nothing changed".
   for (double& f : scene.f) f += 10;
-  ASSERT_TRUE(run(*a, scene, 1, {false, false, true}).ok());
+  ASSERT_TRUE(run_plane_step(*a, scene, 1, {false, false, true}).ok());
   ExecuteReport report;
-  ASSERT_TRUE(run(*a, scene, 2, {false, false, false}, &report).ok());
+  ASSERT_TRUE(run_plane_step(*a, scene, 2, {false, false, false}, &report).ok());
   EXPECT_EQ(report.bvh_decision, "field_refit");
   ASSERT_TRUE(a->finalize().ok());
   const auto log = read_csv(dir / "tetray_log.csv");
@@ -142,14 +129,15 @@ TEST(AdaptorStep, ChangesOnOffTriggerStepsAreNotLost) {
 TEST(AdaptorStep, AutoFitCameraAndColormapRender) {
   ScratchDir dir;
   const PlaneScene scene = make_plane_scene(4);
-  auto a = make("output: {directory: " + dir.path().string() +
-                ", quiet: true, formats: [png]}\n"
-                "scenes:\n"
-                "  - {name: fit, field: f, isovalues: [0.25], color_by: g, colormap: grayscale,\n"
-                "     camera: {auto_fit: true, view_direction: [0, 0, 1]},\n"
-                "     image: {width: 40, height: 40}}\n");
+  auto a = make_adaptor(
+      "output: {directory: " + dir.path().string() +
+      ", quiet: true, formats: [png]}\n"
+      "scenes:\n"
+      "  - {name: fit, field: f, isovalues: [0.25], color_by: g, colormap: grayscale,\n"
+      "     camera: {auto_fit: true, view_direction: [0, 0, 1]},\n"
+      "     image: {width: 40, height: 40}}\n");
   ASSERT_TRUE(a);
-  ASSERT_TRUE(run(*a, scene, 0).ok());
+  ASSERT_TRUE(run_plane_step(*a, scene, 0).ok());
   ASSERT_TRUE(a->finalize().ok());
   const auto log = read_csv(dir / "tetray_log.csv");
   ASSERT_EQ(log.size(), 2u);

@@ -240,10 +240,8 @@ INSTANTIATE_TEST_SUITE_P(
         Edge{"bvh: {rebuild_ratio: 1}\n", kIso, true, ""},
         Edge{"bvh: {rebuild_ratio: 1.0e6}\n", kIso, true, ""},
         Edge{"bvh: {rebuild_ratio: 1000001}\n", kIso, false, "bvh.rebuild_ratio"},
-        Edge{"threads: 0\n", kIso, false, "threads"},
-        Edge{"threads: 1\n", kIso, true, ""},
-        Edge{"threads: 1024\n", kIso, true, ""},
-        Edge{"threads: 1025\n", kIso, false, "threads"},
+        Edge{"threads: 0\n", kIso, false, "threads"}, Edge{"threads: 1\n", kIso, true, ""},
+        Edge{"threads: 1024\n", kIso, true, ""}, Edge{"threads: 1025\n", kIso, false, "threads"},
         // isovalues: 1 to 16 of them, each within the renderer's field range (+-1e30)
         Edge{"", "    isovalues: []\n", false, "scenes[0].isovalues"},
         Edge{"", "    isovalues: [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15]\n", true,

@@ -1,5 +1,7 @@
 #include "plane_scene.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -83,6 +85,19 @@ std::string cell(const std::vector<std::vector<std::string>>& csv, std::size_t r
   const auto at = std::find(header.begin(), header.end(), column);
   if (at == header.end() || row >= csv.size()) return "<missing>";
   return csv[row].at(static_cast<std::size_t>(at - header.begin()));
+}
+
+std::unique_ptr<Adaptor> make_adaptor(const std::string& yaml) {
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status);
+  EXPECT_TRUE(status.ok()) << status.message;
+  return adaptor;
+}
+
+Status run_plane_step(Adaptor& a, const PlaneScene& s, std::int64_t step, const Changes& c,
+                      ExecuteReport* report) {
+  const auto fields = s.fields();
+  return a.execute(step, 0.1 * static_cast<double>(step), s.view(), fields, c, report);
 }
 
 }  // namespace tetray::testing

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ PlaneScene make_plane_scene(int cells);
 // (indented by 4 spaces).
 std::string plane_config(const std::string& directory, const std::string& output_keys = "",
                          const std::string& top_lines = "", const std::string& scene_lines = "");
+
+// The adaptor of `yaml` on MPI_COMM_WORLD; a failed create fails the test (and gives null).
+std::unique_ptr<Adaptor> make_adaptor(const std::string& yaml);
+
+// Step `step` of the scene at time 0.1 step.
+Status run_plane_step(Adaptor& a, const PlaneScene& s, std::int64_t step, const Changes& c = {},
+                      ExecuteReport* report = nullptr);
 
 // Pixels whose ray surely hits the square, and those too close to its edge to call.
 struct ExpectedHits {

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 #include <json/json.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <string>
+
+#include "support/json_output.hpp"
 
 namespace {
 
@@ -18,18 +18,11 @@ constexpr int kCells = 6, kSide = 64;
 Json::Value run_tiny_bench(const std::filesystem::path& dir) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  const std::string json = (dir / "figures.json").string();
-  const std::string command = std::string(TETRAY_ADAPTOR_BENCH_EXE) + " -n " +
-                              std::to_string(kCells) + " --size " + std::to_string(kSide) +
-                              " --steps 3 --off-calls 100 --encode-runs 1 --out " +
-                              (dir / "out").string() + " --json " + json + " > /dev/null";
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream file(json);
-  Json::Value root;
-  Json::CharReaderBuilder reader;
-  std::string errors;
-  EXPECT_TRUE(Json::parseFromStream(reader, file, &root, &errors)) << errors;
-  return root;
+  return tetray::testing::run_for_json(
+      std::string(TETRAY_ADAPTOR_BENCH_EXE) + " -n " + std::to_string(kCells) + " --size " +
+          std::to_string(kSide) + " --steps 3 --off-calls 100 --encode-runs 1 --out " +
+          (dir / "out").string(),
+      "tetray_adaptor_bench_smoke.json");
 }
 
 TEST(AdaptorBenchSmoke, JsonHoldsTheWriterAndEncodingFigures) {

@@ -1,77 +1,19 @@
 // Movies read back with FFmpeg's own demuxer and decoder: frame count, frame size, what the
 // frames show, and what a writer that never closed its movie (as a killed run) leaves.
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-}
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "render/image/movie_writer.hpp"
+#include "support/movie_read.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace tetray::render {
 namespace {
 
+using testing::decode_movie;
+using testing::DecodedMovie;
 using testing::ScratchDir;
-
-struct DecodedMovie {
-  std::string error;
-  std::string codec;
-  int frames = 0;
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> first_luma;  // the first frame's Y plane, width x height
-};
-
-// Every frame of the movie's video stream, decoded.
-DecodedMovie decode_movie(const std::string& path) {
-  DecodedMovie movie;
-  AVFormatContext* format = nullptr;
-  if (avformat_open_input(&format, path.c_str(), nullptr, nullptr) < 0) {
-    movie.error = "cannot open " + path;
-    return movie;
-  }
-  avformat_find_stream_info(format, nullptr);
-  const AVCodec* decoder = nullptr;
-  const int stream = av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
-  if (stream < 0 || !decoder) {
-    movie.error = "no video stream";
-    avformat_close_input(&format);
-    return movie;
-  }
-  AVCodecContext* codec = avcodec_alloc_context3(decoder);
-  avcodec_parameters_to_context(codec, format->streams[stream]->codecpar);
-  avcodec_open2(codec, decoder, nullptr);
-  movie.codec = decoder->name;
-  AVPacket* packet = av_packet_alloc();
-  AVFrame* frame = av_frame_alloc();
-  const auto receive = [&] {
-    while (avcodec_receive_frame(codec, frame) >= 0) {
-      if (movie.frames++ == 0) {
-        movie.width = frame->width;
-        movie.height = frame->height;
-        for (int j = 0; j < frame->height; ++j) {
-          const std::uint8_t* row = frame->data[0] + j * frame->linesize[0];
-          movie.first_luma.insert(movie.first_luma.end(), row, row + frame->width);
-        }
-      }
-    }
-  };
-  while (av_read_frame(format, packet) >= 0) {
-    if (packet->stream_index == stream) avcodec_send_packet(codec, packet);
-    av_packet_unref(packet);
-    receive();
-  }
-  avcodec_send_packet(codec, nullptr);
-  receive();
-  av_frame_free(&frame);
-  av_packet_free(&packet);
-  avcodec_free_context(&codec);
-  avformat_close_input(&format);
-  return movie;
-}
 
 // Left half white, right half black, opaque: linear premultiplied as the tracer writes it.
 Framebuffer half_white(int width, int height) {
