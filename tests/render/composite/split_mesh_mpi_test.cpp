@@ -124,20 +124,29 @@ Comparison compare(const Framebuffer& split, const Framebuffer& whole) {
   return c;
 }
 
+// The whole mesh, as one rank holds it.
+MeshPiece whole_mesh() {
+  return piece_of(
+      scene(), [](std::size_t) { return 0; }, 0);
+}
+
+// The origin every rank shares: the centre of the pieces' global bounds (collective).
+Vec3d shared_origin(const MeshPiece& piece) {
+  BoundingBox box = local_bounds<double>(piece.points);
+  EXPECT_EQ(global_bounds_and_ranges(box, {}, MPI_COMM_WORLD), MPI_SUCCESS);
+  return 0.5 * (box.lo() + box.hi());
+}
+
 // Splits the mesh by `owner`, composites on rank 0 and checks against the whole mesh there.
 void check_split(const Partition& owner, const std::string& what) {
   const World w = world();
   const MeshPiece piece = piece_of(scene(), owner, w.rank);
-  BoundingBox box = local_bounds<double>(piece.points);
-  ASSERT_EQ(global_bounds_and_ranges(box, {}, MPI_COMM_WORLD), MPI_SUCCESS);
-  const Vec3d origin = 0.5 * (box.lo() + box.hi());
+  const Vec3d origin = shared_origin(piece);
   Framebuffer image = trace_piece(piece, origin);
   CompositeStats stats;
   ASSERT_EQ(composite(image, MPI_COMM_WORLD, {}, &stats), MPI_SUCCESS) << what;
   if (w.rank != 0) return;
-  const Framebuffer whole = trace_piece(piece_of(
-                                            scene(), [](std::size_t) { return 0; }, 0),
-                                        origin);
+  const Framebuffer whole = trace_piece(whole_mesh(), origin);
   const Comparison c = compare(image, whole);
   EXPECT_GT(c.hits, whole.pixel_count() / 10) << what << ": the view must show the surface";
   EXPECT_EQ(c.hit_miss_differences, 0u) << what;
@@ -214,14 +223,10 @@ ShadowedImage shadowed_piece(const MeshPiece& piece, Vec3d origin, MPI_Comm comm
 void check_shadowed_split(const Partition& owner, const std::string& what) {
   const World w = world();
   const MeshPiece piece = piece_of(scene(), owner, w.rank);
-  BoundingBox box = local_bounds<double>(piece.points);
-  ASSERT_EQ(global_bounds_and_ranges(box, {}, MPI_COMM_WORLD), MPI_SUCCESS);
-  const Vec3d origin = 0.5 * (box.lo() + box.hi());
+  const Vec3d origin = shared_origin(piece);
   const ShadowedImage split = shadowed_piece(piece, origin, MPI_COMM_WORLD);
   if (w.rank != 0) return;
-  const ShadowedImage whole = shadowed_piece(piece_of(
-                                                 scene(), [](std::size_t) { return 0; }, 0),
-                                             origin, MPI_COMM_SELF);
+  const ShadowedImage whole = shadowed_piece(whole_mesh(), origin, MPI_COMM_SELF);
   std::size_t shadowed = 0, lit = 0, occlusion_differences = 0, color_differences = 0;
   for (std::size_t p = 0; p < whole.image.pixel_count(); ++p) {
     if (whole.image.hit[p] == kNoHit) continue;
