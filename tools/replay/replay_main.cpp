@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,25 +92,31 @@ int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series,
   return failed;
 }
 
-// The adaptor of the config file, writing to `output` when it is not empty. The override is
-// made on the parsed YAML; a file yaml-cpp cannot read is handed to the adaptor as it is, whose
-// message names the file and the line.
-std::unique_ptr<tetray::Adaptor> create_adaptor(const std::string& config,
-                                                const std::string& output, tetray::Status& status) {
-  if (output.empty()) return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+// The config file's YAML with output.directory set to `output`; nothing when yaml-cpp cannot
+// read it as a map (with an `output` map, if any): the adaptor then reads the file as it is, and
+// its message names the file and the line.
+std::optional<std::string> with_output_directory(const std::string& config,
+                                                 const std::string& output) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(config);
   } catch (const YAML::Exception&) {
-    return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+    return std::nullopt;
   }
-  if (!root.IsMap() || (root["output"] && !root["output"].IsMap())) {
-    return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
-  }
+  if (!root.IsMap() || (root["output"] && !root["output"].IsMap())) return std::nullopt;
   root["output"]["directory"] = output;
   YAML::Emitter text;
   text << root;
-  auto adaptor = tetray::Adaptor::create_from_yaml(MPI_COMM_WORLD, text.c_str(), status);
+  return std::string(text.c_str());
+}
+
+// The adaptor of the config file, writing to `output` when it is not empty.
+std::unique_ptr<tetray::Adaptor> create_adaptor(const std::string& config,
+                                                const std::string& output, tetray::Status& status) {
+  const std::optional<std::string> yaml =
+      output.empty() ? std::nullopt : with_output_directory(config, output);
+  if (!yaml) return tetray::Adaptor::create(MPI_COMM_WORLD, config, status);
+  auto adaptor = tetray::Adaptor::create_from_yaml(MPI_COMM_WORLD, *yaml, status);
   if (!adaptor) status.message = config + " with --output " + output + ": " + status.message;
   return adaptor;
 }
