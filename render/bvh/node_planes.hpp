@@ -14,17 +14,9 @@
 
 namespace tetray::render {
 
-struct NodePlane {
-  float gradient[3] = {0, 0, 0};  // mean field gradient over the node's tets (local units)
-  float value = 0;                // the fit's field value at the centre of the node's box
-  float weight = 0;               // six times the node's tet volume (the mean's weight)
-
-  bool flat() const { return gradient[0] == 0 && gradient[1] == 0 && gradient[2] == 0; }
-};
-
-// planes[i] for node i of the BVH, bottom-up: a leaf from its tets, an inner node from its two
-// children. Parallel over the BVH's recorded subtrees (as the refit), in the calling oneTBB
-// arena; the result does not depend on the thread count.
+// NodePlane (bvh.hpp) planes[i] for node i of the BVH, bottom-up: a leaf from its tets, an inner
+// node from its two children. Parallel over the BVH's recorded subtrees (as the refit), in the
+// calling oneTBB arena; the result does not depend on the thread count.
 void fit_node_planes(const TetVolume& volume, const Bvh& bvh, std::vector<NodePlane>& planes);
 
 }  // namespace tetray::render

@@ -1,5 +1,5 @@
 // Level of detail in the traversal (Knoll et al. 2009, §VI, on the tet BVH: docs/architecture.md
-// §9). The traversal stops descending at a node that is narrower than `pixel_error` pixel
+// §9). The traversal stops descending at a node that is narrower than `node_pixels` pixel
 // footprints at its distance from the eye, and intersects the isosurface of the node's linear
 // fit (render/bvh/node_planes.hpp) within the node's box instead of its tets. The test depends
 // on the node and the camera only, never on the packet, so neighbouring packets stop at the same
@@ -20,10 +20,10 @@ namespace tetray::render {
 
 // What a scene asks for: empty planes or a zero pixel error mean exact images.
 struct LevelOfDetail {
-  float pixel_error = 0;                // node width allowed, in pixel footprints
+  float node_pixels = 0;                // node width allowed, in pixel footprints
   std::span<const NodePlane> planes{};  // one per BVH node (fit_node_planes)
 
-  bool enabled() const { return pixel_error > 0 && !planes.empty(); }
+  bool enabled() const { return node_pixels > 0 && !planes.empty(); }
 };
 
 struct NoLod {
@@ -34,7 +34,7 @@ class FootprintLod {
  public:
   // footprint_per_distance: the width of one pixel at unit distance from the eye.
   FootprintLod(const LevelOfDetail& lod, float footprint_per_distance)
-      : planes_(lod.planes), allowed_per_distance_(lod.pixel_error * footprint_per_distance) {}
+      : planes_(lod.planes), allowed_per_distance_(lod.node_pixels * footprint_per_distance) {}
 
   // The node's widest side against the footprint at the nearest point of its box (zero with the
   // eye inside it, where no node is coarse enough). A node without a surface plane (its field

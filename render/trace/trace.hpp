@@ -75,7 +75,7 @@ struct TraceOptions {
   // Beyond a lone headlight, each light's term is computed per hit; a shadowing light's term is
   // also written apart (trace_into's shadow_terms) for apply_shadows once visibility is known.
   Lights lights{};
-  // Where a BVH node is narrower than lod.pixel_error pixels, its proxy surface is drawn instead
+  // Where a BVH node is narrower than lod.node_pixels pixels, its proxy surface is drawn instead
   // of its tets (level_of_detail.hpp); off by default: exact images, and nothing of it runs.
   LevelOfDetail lod{};
 };

@@ -15,10 +15,12 @@
 #include "render/bvh/node_planes.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "support/render_fixtures.hpp"
+#include "tools/bench_common/image_error.hpp"
 
 namespace tetray::test {
 namespace {
 
+using bench::ImageError;
 using render::Bounds4;
 using render::NodePlane;
 
@@ -153,42 +155,19 @@ TEST(FootprintLod, StopsAtNodesNarrowerThanTheFootprintOnly) {
   EXPECT_FALSE(lod.stops_at(0, node, {10.5f, 0.5f, 0.5f}));  // eye inside
 }
 
-struct ImageError {
-  double hit_miss = 0;      // pixels where one image hits and the other misses, of all hits
-  double median_depth = 0;  // |depth difference| in pixel footprints, pixels both hit
-  double max_depth = 0;
-};
-
 ImageError compare(const render::Framebuffer& exact, const render::Framebuffer& lod,
                    const render::Camera& camera) {
-  const double footprint = 2 * std::tan(camera.fov_deg * std::acos(-1.0) / 360) / camera.height;
-  std::vector<double> errors;
-  std::size_t either = 0, differ = 0;
-  for (std::size_t p = 0; p < exact.pixel_count(); ++p) {
-    const bool a = exact.hit[p] != render::kNoHit, b = lod.hit[p] != render::kNoHit;
-    either += a || b;
-    differ += a != b;
-    if (a && b)
-      errors.push_back(std::abs(exact.depth[p] - lod.depth[p]) / (footprint * exact.depth[p]));
-  }
-  ImageError e;
-  e.hit_miss = either ? double(differ) / double(either) : 0;
-  if (!errors.empty()) {
-    std::sort(errors.begin(), errors.end());
-    e.median_depth = errors[errors.size() / 2];
-    e.max_depth = errors.back();
-  }
-  return e;
+  return bench::image_error(exact, lod, camera);
 }
 
 render::Framebuffer trace_lod(const RenderScene& scene, const render::Camera& camera,
-                              std::span<const render::IsoSurface> surfaces, float pixel_error,
+                              std::span<const render::IsoSurface> surfaces, float node_pixels,
                               const std::vector<NodePlane>& planes, render::TraceStats* stats,
                               render::PacketSize packet = render::PacketSize::p16x16) {
   render::TraceOptions options;
   options.packet = packet;
   options.collect_stats = stats != nullptr;
-  options.lod = {pixel_error, planes};
+  options.lod = {node_pixels, planes};
   return render::trace(scene.volume, scene.bvh, camera, surfaces, options, stats);
 }
 
@@ -221,8 +200,8 @@ TEST(LevelOfDetail, PlanarSurfaceDrawnByProxiesWithFarLessTraversal) {
       render::trace(scene.volume, scene.bvh, camera, surfaces, exact_options, &exact_stats);
   const render::Framebuffer lod = trace_lod(scene, camera, surfaces, 16.0f, planes, &lod_stats);
   const ImageError e = compare(exact, lod, camera);
-  EXPECT_LT(e.hit_miss, 0.002);
-  EXPECT_LT(e.max_depth, 0.05);  // rounding only: the proxies lie in the same plane
+  EXPECT_LT(e.hit_miss_fraction, 0.002);
+  EXPECT_LT(e.depth_p99_px, 0.05);  // rounding only: the proxies lie in the same plane
   EXPECT_LT(lod_stats.isopolygon_extractions, exact_stats.isopolygon_extractions / 2);
   EXPECT_LT(lod_stats.packet_box_tests, exact_stats.packet_box_tests);
 }
@@ -233,19 +212,18 @@ TEST(LevelOfDetail, CurvedSurfaceErrorBoundedByTheThresholdAndShrinkingWithIt) {
   const RenderScene scene = load_scene(box.points, box.tets, f);
   const auto surfaces = make_surfaces(std::vector<double>{0.7});
   const std::vector<NodePlane> planes = planes_of(scene);
-  const render::Camera camera =
-      look_at({0, 0, 4}, {0, 0, 0}, 30, 96, 96);
+  const render::Camera camera = look_at({0, 0, 4}, {0, 0, 0}, 30, 96, 96);
   const render::Framebuffer exact = trace_image(scene, camera, surfaces);
   double last_median = 1e30, last_hit_miss = 1;
-  for (float pixel_error : {32.0f, 16.0f, 8.0f}) {
+  for (float node_pixels : {32.0f, 16.0f, 8.0f}) {
     const ImageError e =
-        compare(exact, trace_lod(scene, camera, surfaces, pixel_error, planes, nullptr), camera);
-    EXPECT_LE(e.median_depth, pixel_error) << "pixel_error " << pixel_error;
-    EXPECT_LT(e.median_depth, last_median) << "pixel_error " << pixel_error;
-    EXPECT_LE(e.hit_miss, last_hit_miss) << "pixel_error " << pixel_error;
-    EXPECT_LT(e.hit_miss, 0.1) << "pixel_error " << pixel_error;
-    last_median = e.median_depth;
-    last_hit_miss = e.hit_miss;
+        compare(exact, trace_lod(scene, camera, surfaces, node_pixels, planes, nullptr), camera);
+    EXPECT_LE(e.depth_median_px, node_pixels) << "node_pixels " << node_pixels;
+    EXPECT_LT(e.depth_median_px, last_median) << "node_pixels " << node_pixels;
+    EXPECT_LE(e.hit_miss_fraction, last_hit_miss) << "node_pixels " << node_pixels;
+    EXPECT_LT(e.hit_miss_fraction, 0.1) << "node_pixels " << node_pixels;
+    last_median = e.depth_median_px;
+    last_hit_miss = e.hit_miss_fraction;
   }
 }
 
