@@ -25,11 +25,11 @@ struct BvhNode {
   bool is_leaf() const { return count != 0; }
 };
 
-// The linear fit of the field over a node's tets, for the level of detail (node_planes.hpp).
+// The linear fit of the field over a node's vertices, for the level of detail
+// (node_planes.hpp).
 struct NodePlane {
-  float gradient[3] = {0, 0, 0};  // mean field gradient over the node's tets (local units)
+  float gradient[3] = {0, 0, 0};  // the fit's field gradient (local units); zero: no fit
   float value = 0;                // the fit's field value at the centre of the node's box
-  float weight = 0;               // six times the node's tet volume (the mean's weight)
 
   bool flat() const { return gradient[0] == 0 && gradient[1] == 0 && gradient[2] == 0; }
 };
