@@ -359,6 +359,9 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     policy.vertex_gradients = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
       return s.volume == v && s.config.shading.smooth;
     });
+    policy.node_planes = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
+      return s.volume == v && s.config.lod_node_pixels > 0;
+    });
     const render::UpdateResult result = volume.update(inputs, epochs_, policy, origin_);
     walks_[v].after_update(volume.volume(), result.kind);
     first->record.bvh_ms = watch.ms();
@@ -443,6 +446,8 @@ render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
   options.smooth = s.config.shading.smooth;
   options.clip = s.config.shading.clip;
   options.lights = s.config.shading.lights;
+  if (s.config.lod_node_pixels > 0)
+    options.lod = {s.config.lod_node_pixels, volumes_[s.volume].bvh().lod_planes};
   return options;
 }
 

@@ -97,6 +97,7 @@ struct Scene {
   Orbit orbit{};
   std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
   ShadingSpec shading{};
+  float lod_node_pixels = 0;  // level of detail (config_lod.hpp); 0: exact images
 };
 
 struct Output {

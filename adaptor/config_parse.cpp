@@ -11,6 +11,7 @@
 
 #include "camera_path.hpp"
 #include "config_annotations.hpp"
+#include "config_lod.hpp"
 #include "config_probes.hpp"
 #include "config_shading_parse.hpp"
 #include "config_views.hpp"
@@ -280,7 +281,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   r.allow_keys(node, key,
                {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
                 "camera", "image", "background", "lights", "trigger", "annotations", "orbit",
-                "volume", "shading", "clip"});
+                "volume", "shading", "clip", "lod"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -309,6 +310,11 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
     s.annotations = parse_annotations(r, node["annotations"], child_key(key, "annotations"), s);
   }
   if (node["orbit"]) s.orbit = parse_orbit(r, node["orbit"], child_key(key, "orbit"), s);
+  if (node["lod"]) {
+    if (node["volume"])
+      r.fail(node["lod"], child_key(key, "lod"), "applies to isosurfaces, not to volume scenes");
+    s.lod_node_pixels = parse_lod(r, node["lod"], child_key(key, "lod"));
+  }
   s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
                               : default_trigger;
   return s;

@@ -25,6 +25,15 @@ struct BvhNode {
   bool is_leaf() const { return count != 0; }
 };
 
+// The linear fit of the field over a node's vertices, for the level of detail
+// (node_planes.hpp).
+struct NodePlane {
+  float gradient[3] = {0, 0, 0};  // the fit's field gradient (local units); zero: no fit
+  float value = 0;                // the fit's field value at the centre of the node's box
+
+  bool flat() const { return gradient[0] == 0 && gradient[1] == 0 && gradient[2] == 0; }
+};
+
 enum class BvhBuilder { bih, sah };
 
 struct BvhBuildOptions {
@@ -49,11 +58,15 @@ struct Bvh {
   // build and after the last refit: the quality measure of the rebuild policy.
   double sah_cost_at_build = 0;
   double sah_cost_now = 0;
+  // Per node, the linear fit of the field for the level of detail (node_planes.hpp); empty
+  // unless a scene asks for it.
+  std::vector<NodePlane> lod_planes;
 
   bool empty() const { return nodes.empty(); }
   std::size_t bytes() const {
     return nodes.capacity() * sizeof(BvhNode) +
-           (leaf_vertex_begin.capacity() + leaf_vertices.capacity()) * sizeof(std::uint32_t);
+           (leaf_vertex_begin.capacity() + leaf_vertices.capacity()) * sizeof(std::uint32_t) +
+           lod_planes.capacity() * sizeof(NodePlane);
   }
 };
 

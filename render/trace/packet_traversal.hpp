@@ -9,7 +9,9 @@
 //       subtree (first-active tracking).
 // Leaves get the same geometric test, then the leaf operation runs from the first active ray.
 // A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test;
-// the default one discards none and compiles to nothing.
+// the default one discards none and compiles to nothing. A level-of-detail policy
+// (level_of_detail.hpp) may stop the descent at an inner node, which then goes to the leaf
+// operation as it is; the default one never stops and compiles to nothing.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +22,7 @@
 #include "render/trace/clip_region.hpp"
 #include "render/trace/iso_set.hpp"
 #include "render/trace/isopolygon.hpp"
+#include "render/trace/level_of_detail.hpp"
 #include "render/trace/ray_packet.hpp"
 #include "render/trace/trace.hpp"
 
@@ -29,7 +32,7 @@ namespace tetray::render {
 // 1 + 2 gamma(3), so rounding never lets a ray miss a box around a surface it hits.
 inline constexpr float kRobustFar = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
-template <int S, bool kStats, typename NodeFilter = NoNodeFilter>
+template <int S, bool kStats, typename NodeFilter = NoNodeFilter, typename Lod = NoLod>
 class PacketTraversal {
  public:
   using Packet = RayPacket<S>;
@@ -37,8 +40,8 @@ class PacketTraversal {
   static constexpr int W = Packet::kLaneWidth;
 
   PacketTraversal(const Bvh& bvh, const IsoSet& isos, Packet& packet, TraceStats& stats,
-                  NodeFilter filter = {})
-      : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats), filter_(filter) {}
+                  NodeFilter filter = {}, Lod lod = {})
+      : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats), filter_(filter), lod_(lod) {}
 
   // Runs the traversal; leaf(node, first_active) intersects a leaf's tets. A leaf operation
   // that returns bool ends the traversal by returning true (any-hit rays: all are done).
@@ -98,11 +101,12 @@ class PacketTraversal {
     return isos_.straddled_by(n.bounds.lo[3], n.bounds.hi[3]) && !filter_.discards(n.bounds);
   }
 
-  // Walks down from `node` to a leaf (updating node and active), pushing far children of
-  // bifurcations; active becomes -1 when the walk ends without a leaf to intersect.
+  // Walks down from `node` to a leaf, or to a node the level of detail stops at (updating node
+  // and active), pushing far children of bifurcations; active becomes -1 when the walk ends
+  // without a node to intersect.
   template <typename Push>
   void descend(std::uint32_t& node, int& active, Push&& push) {
-    while (!bvh_.nodes[node].is_leaf()) {
+    while (!bvh_.nodes[node].is_leaf() && !lod_.stops_at(node, bvh_.nodes[node], packet_.eye)) {
       const std::uint32_t first = bvh_.nodes[node].first;
       const bool a0 = range_active(bvh_.nodes[first]), a1 = range_active(bvh_.nodes[first + 1]);
       if (!a0 && !a1) {
@@ -179,6 +183,7 @@ class PacketTraversal {
   Packet& packet_;
   TraceStats& stats_;
   [[no_unique_address]] NodeFilter filter_;
+  [[no_unique_address]] Lod lod_;
 };
 
 }  // namespace tetray::render

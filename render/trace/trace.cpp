@@ -16,6 +16,7 @@
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/leaf_intersect.hpp"
 #include "render/trace/packet_traversal.hpp"
+#include "render/trace/proxy_intersect.hpp"
 #include "render/trace/shade.hpp"
 
 namespace tetray::render {
@@ -71,6 +72,8 @@ struct Frame {
   LocalLights lights;   // used unless options.lights is a headlight alone
   bool lit = false;
   std::vector<Framebuffer>* shadow_terms = nullptr;  // one per shadowing light, or null
+  LevelOfDetail lod{};                               // used when enabled
+  float footprint_per_distance = 0;                  // a pixel's width at unit distance
 };
 
 // One packet row's pixels, composed in the cache and then written to the frame in one go.
@@ -195,22 +198,37 @@ void write_background(const Frame& f, int x0, int y0, Framebuffer& image, TraceS
   }
 }
 
+template <bool kLod>
+auto lod_policy(const Frame& f) {
+  if constexpr (kLod) {
+    return FootprintLod(f.lod, f.footprint_per_distance);
+  } else {
+    return NoLod{};
+  }
+}
+
 // Traces the packet's rays through the one traversal, with the node and hit filters of the
-// scene's clip region (none without one).
-template <int S, bool kStats, bool kClip>
+// scene's clip region (none without one) and its level of detail (exact without one): a node
+// the traversal stopped at, or a leaf narrow enough, gives its proxy surface instead of its tets.
+template <int S, bool kStats, bool kClip, bool kLod>
 void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats) {
   using NodeFilter = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
   using HitFilter = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
-  PacketTraversal<S, kStats, NodeFilter> traversal(f.bvh, f.isos, packet, stats,
-                                                   NodeFilter(f.clip));
+  const auto lod = lod_policy<kLod>(f);
+  PacketTraversal<S, kStats, NodeFilter, decltype(lod)> traversal(f.bvh, f.isos, packet, stats,
+                                                                  NodeFilter(f.clip), lod);
   IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, HitFilter(f.clip));
-  traversal.run([&](const BvhNode& leaf, int first_active) {
-    if (intersect_leaf<S, kStats>(f.volume, f.isos, leaf, first_active, intersector, packet, stats))
+  traversal.run([&](const BvhNode& node, int first_active) {
+    const std::uint32_t index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
+    const bool proxy = !node.is_leaf() || lod.stops_at(index, node, packet.eye);
+    if (proxy ? intersect_proxy(f.volume, f.bvh, f.lod, f.isos, node, first_active, intersector)
+              : intersect_leaf<S, kStats>(f.volume, f.isos, node, first_active, intersector, packet,
+                                          stats))
       update_tmax_bound(packet);
   });
 }
 
-template <int S, bool kStats, bool kClip>
+template <int S, bool kStats, bool kClip, bool kLod>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
   PacketFrustum frustum{};  // single rays use none
   if constexpr (S > 1) {
@@ -220,11 +238,11 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
   }
   RayPacket<S> packet;
   setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, x0, y0);
-  trace_rays<S, kStats, kClip>(f, packet, stats);
+  trace_rays<S, kStats, kClip, kLod>(f, packet, stats);
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
 
-template <int S, bool kStats, bool kClip>
+template <int S, bool kStats, bool kClip, bool kLod>
 void trace_blocks(const Frame& f, Framebuffer& image, TraceStats* total) {
   const int blocks_x = (f.camera.width + kBlock - 1) / kBlock;
   const int blocks = blocks_x * ((f.camera.height + kBlock - 1) / kBlock);
@@ -234,19 +252,28 @@ void trace_blocks(const Frame& f, Framebuffer& image, TraceStats* total) {
     const int bx = b % blocks_x * kBlock, by = b / blocks_x * kBlock;
     for (int y = by; y < by + kBlock && y < f.camera.height; y += S)
       for (int x = bx; x < bx + kBlock && x < f.camera.width; x += S)
-        trace_packet<S, kStats, kClip>(f, x, y, image, local);
+        trace_packet<S, kStats, kClip, kLod>(f, x, y, image, local);
   });
   if (total) {
     for (const TraceStats& s : stats) *total += s;
   }
 }
 
-template <int S, bool kClip>
+template <int S, bool kClip, bool kLod>
 void trace_with(const Frame& f, Framebuffer& image, bool collect, TraceStats* stats) {
   if (collect) {
-    trace_blocks<S, true, kClip>(f, image, stats);
+    trace_blocks<S, true, kClip, kLod>(f, image, stats);
   } else {
-    trace_blocks<S, false, kClip>(f, image, nullptr);
+    trace_blocks<S, false, kClip, kLod>(f, image, nullptr);
+  }
+}
+
+template <int S, bool kClip>
+void trace_with(const Frame& f, Framebuffer& image, bool collect, TraceStats* stats) {
+  if (f.lod.enabled()) {
+    trace_with<S, kClip, true>(f, image, collect, stats);
+  } else {
+    trace_with<S, kClip, false>(f, image, collect, stats);
   }
 }
 
@@ -323,7 +350,9 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
           {},
           local_lights(options.lights, volume.origin),
           lit,
-          shadow_terms};
+          shadow_terms,
+          options.lod,
+          static_cast<float>(2 * view.scale_y / camera.height)};
   f.shade.surface_of_sorted = f.surface_of_sorted;
   f.smooth = options.smooth && volume.gradients.size() == volume.vertices.size() &&
              !volume.vertices.empty();

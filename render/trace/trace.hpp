@@ -14,6 +14,7 @@
 #include "render/trace/clip_region.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/iso_set.hpp"
+#include "render/trace/level_of_detail.hpp"
 #include "render/trace/lights.hpp"
 #include "render/volume/tet_volume.hpp"
 
@@ -74,6 +75,9 @@ struct TraceOptions {
   // Beyond a lone headlight, each light's term is computed per hit; a shadowing light's term is
   // also written apart (trace_into's shadow_terms) for apply_shadows once visibility is known.
   Lights lights{};
+  // Where a BVH node is narrower than lod.node_pixels pixels, its proxy surface is drawn instead
+  // of its tets (level_of_detail.hpp); off by default: exact images, and nothing of it runs.
+  LevelOfDetail lod{};
 };
 
 // Traces every pixel of `camera` against `volume`/`bvh` for up to kMaxIsovalues isosurfaces

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "render/core/stopwatch.hpp"
+#include "render/bvh/node_planes.hpp"
 #include "render/core/value_bounds.hpp"
 #include "render/update/vertex_gradients.hpp"
 #include "render/volume/point_read.hpp"
@@ -93,6 +94,12 @@ UpdateResult rebuild(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
   return result;
 }
 
+// What the scenes derive from a new step beyond the BVH, only when one asks for it.
+void derive_per_step(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
+  if (policy.vertex_gradients) compute_vertex_gradients(volume);
+  if (policy.node_planes) fit_node_planes(volume, bvh, bvh.lod_planes);
+}
+
 }  // namespace
 
 const char* to_string(BvhUpdateKind kind) {
@@ -134,7 +141,7 @@ UpdateResult load_volume(TetVolume& volume, Bvh& bvh, std::span<const std::int64
   const double ingest_ms = watch.ms();
   UpdateResult result = rebuild(volume, bvh, policy);
   result.ingest_refit_ms = ingest_ms;
-  if (policy.vertex_gradients) compute_vertex_gradients(volume);
+  derive_per_step(volume, bvh, policy);
   return result;
 }
 
@@ -156,8 +163,8 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
     result.ingest_refit_ms = refit_ms;
     result.quality_ratio = ratio;
   }
-  // After a rebuild too: it renumbers the vertices.
-  if (policy.vertex_gradients) compute_vertex_gradients(volume);
+  // After a rebuild too: it renumbers the vertices and reorders the tets.
+  derive_per_step(volume, bvh, policy);
   return result;
 }
 

@@ -22,6 +22,7 @@ struct UpdatePolicy {
   double rebuild_ratio = 1.5;  // rebuild when SAH cost / cost at build exceeds this
   BvhBuildOptions build{};
   bool vertex_gradients = false;  // keep TetVolume::gradients current (smooth shading)
+  bool node_planes = false;       // keep Bvh::lod_planes current (level of detail)
 };
 
 struct UpdateResult {

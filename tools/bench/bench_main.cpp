@@ -12,6 +12,7 @@
 
 #include "bench_depth_compare.hpp"
 #include "bench_json.hpp"
+#include "bench_lod.hpp"
 #include "bench_machine.hpp"
 #include "bench_options.hpp"
 #include "bench_reference_embree.hpp"
@@ -66,19 +67,34 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   return figures;
 }
 
+// Whether size n fits the memory available now; if not, says so in the report.
+bool fits(int n, BenchReport& report) {
+  if (estimated_bytes(n) <= available_memory() / 10 * 8) return true;
+  report.skipped.push_back("n = " + std::to_string(n) + " skipped: needs about " +
+                           std::to_string(estimated_bytes(n) >> 20) + " MiB, " +
+                           std::to_string(available_memory() >> 20) + " MiB available");
+  print_note(report.skipped.back());
+  return false;
+}
+
 BenchReport run_bench(const BenchOptions& options) {
   BenchReport report;
   report.machine = describe_machine();
   report.threads = options.threads;
   print_header(report.machine, options.threads, options.size_px);
   tbb::task_arena arena(options.threads);
+  std::vector<LodRow> lod_rows;
   for (const int n : options.sizes) {
-    if (estimated_bytes(n) > available_memory() / 10 * 8) {
-      report.skipped.push_back("n = " + std::to_string(n) + " skipped: needs about " +
-                               std::to_string(estimated_bytes(n) >> 20) + " MiB, " +
-                               std::to_string(available_memory() >> 20) + " MiB available");
-      print_note(report.skipped.back());
-      continue;
+    if (!fits(n, report)) continue;
+    if (!options.lod_study_path.empty()) {
+      arena.execute([&] {
+        const std::vector<LodRow> rows =
+            measure_lod_study(n, bench_camera(options.size_px), options.threads);
+        print_lod_rows(rows);
+        lod_rows.insert(lod_rows.end(), rows.begin(), rows.end());
+      });
+      write_lod_csv(lod_rows, options.lod_study_path);  // after each size: a long study keeps
+      continue;                                         // what it measured if cut short
     }
     arena.execute([&] { report.scenes.push_back(measure_scene(n, options)); });
     print_scene(report.scenes.back());

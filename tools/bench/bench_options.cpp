@@ -17,6 +17,8 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--steps", options.steps, "time steps t = 0, 0.1, ... for the refit figures")
       ->check(CLI::Range(1, 100));
+  app.add_option("--lod-study", options.lod_study_path,
+                 "run only the level-of-detail study for the sizes and write it as CSV here");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -4,6 +4,7 @@
 
 #include "bench_timing.hpp"
 #include "render/update/volume_update.hpp"
+#include "render/walk/hilbert_order.hpp"
 #include "render/walk/tet_walk.hpp"
 #include "render/walk/volume_render.hpp"
 
@@ -62,6 +63,12 @@ WalkFigures measure_walk(const GyroidTwist& scene, const render::Camera& camera)
   });
   figures.tet20 = measure_layout<render::Tet20>(volume, walk.boundary, camera);
   figures.tet16 = measure_layout<render::Tet16>(volume, walk.boundary, camera);
+  render::TetVolume hilbert;
+  figures.hilbert_order_ms =
+      best_ms(kRepetitions, [&] { hilbert = render::hilbert_ordered(volume); });
+  const render::WalkStructure hilbert_walk = render::build_walk_structure(hilbert);
+  figures.tet20_hilbert = measure_layout<render::Tet20>(hilbert, hilbert_walk.boundary, camera);
+  figures.tet16_hilbert = measure_layout<render::Tet16>(hilbert, hilbert_walk.boundary, camera);
   for (const double termination : {0.99, 1.0}) {
     render::VolumeRenderStats stats;
     const double ms = best_ms(kRepetitions, [&] {
@@ -85,6 +92,9 @@ void print_walk(const WalkFigures& f) {
   };
   row("Tet20", f.tet20);
   row("Tet16", f.tet16);
+  std::printf("  in Hilbert order (sorting %.1f ms):\n", f.hilbert_order_ms);
+  row("Tet20", f.tet20_hilbert);
+  row("Tet16", f.tet16_hilbert);
   std::printf(
       "  volume rendering: %.1f ms (%.1f Mtets/s) with early termination at 0.99, "
       "%.1f ms (%.1f Mtets/s) without; %.0f rays lost\n",
@@ -104,6 +114,9 @@ Json::Value walk_json(const WalkFigures& f) {
   };
   json["tet20"] = layout(f.tet20);
   json["tet16"] = layout(f.tet16);
+  json["tet20_hilbert"] = layout(f.tet20_hilbert);
+  json["tet16_hilbert"] = layout(f.tet16_hilbert);
+  json["hilbert_order_ms"] = f.hilbert_order_ms;
   json["boundary_faces"] = static_cast<Json::UInt64>(f.boundary_faces);
   json["boundary_build_ms"] = f.boundary_build_ms;
   json["dvr_ms"] = f.dvr_ms;

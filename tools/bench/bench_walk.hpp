@@ -1,6 +1,7 @@
 // The walk stage's figures (docs/architecture.md §8) on the gyroid-twist scene: face adjacency
 // build time and bytes per tet in the Tet20 and Tet16 forms (Aman et al. 2022, §3), the walk
-// alone in both forms, and direct volume rendering of the field with and without early ray
+// alone in both forms, with the tets in the BVH's leaf order and in Hilbert order (Aman et al.
+// 2022, §5), and direct volume rendering of the field with and without early ray
 // termination.
 #pragma once
 
@@ -20,7 +21,9 @@ struct LayoutFigures {
 };
 
 struct WalkFigures {
-  LayoutFigures tet20, tet16;
+  LayoutFigures tet20, tet16;                  // tets in the BVH's leaf order
+  LayoutFigures tet20_hilbert, tet16_hilbert;  // the same tets in Hilbert order
+  double hilbert_order_ms = 0;                 // sorting and renumbering
   std::size_t boundary_faces = 0;
   double boundary_build_ms = 0;
   double dvr_ms = 0;  // early termination at 0.99
