@@ -45,7 +45,8 @@ void expect_every_key(const Json::Value& root) {
   const Json::Value& scene = root["scenes"][0];
   EXPECT_EQ(scene["n"].asInt(), kCells);
   EXPECT_EQ(scene["tets"].asUInt64(), 6u * kCells * kCells * kCells);
-  expect_numbers(scene, {"build_bih_ms", "build_sah_ms", "bvh_bytes_per_tet"});
+  expect_numbers(scene, {"build_bih_ms", "build_sah_ms", "bvh_bytes_per_tet",
+                         "volume_bytes_per_tet", "peak_rss_mib"});
   for (const char* packet : {"1", "8x8", "16x16", "32x32"}) {
     expect_numbers(scene["trace_ms"], {packet});
     expect_numbers(scene["mrays_per_s"], {packet});

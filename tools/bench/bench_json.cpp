@@ -57,6 +57,8 @@ Json::Value scene(const SceneFigures& figures) {
   json["build_bih_ms"] = number(figures.tetray.build_bih_ms);
   json["build_sah_ms"] = number(figures.tetray.build_sah_ms);
   json["bvh_bytes_per_tet"] = number(figures.tetray.bvh_bytes_per_tet);
+  json["volume_bytes_per_tet"] = number(figures.tetray.volume_bytes_per_tet);
+  json["peak_rss_mib"] = number(figures.peak_rss_mib);
   json["bvh_nodes"] = count(figures.tetray.bvh_nodes);
   for (const PacketFigures& packet : figures.tetray.packets) {
     const char* label = render::to_string(packet.packet);

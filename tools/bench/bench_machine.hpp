@@ -11,4 +11,7 @@ MachineInfo describe_machine();
 // User + system CPU time of this process so far.
 double process_cpu_seconds();
 
+// The largest resident memory of this process so far, in MiB.
+double peak_rss_mib();
+
 }  // namespace tetray::bench

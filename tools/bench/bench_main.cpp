@@ -64,6 +64,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   figures.walk = measure_walk(scene, camera);
   figures.shading = measure_shading(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
+  figures.peak_rss_mib = peak_rss_mib();
   return figures;
 }
 

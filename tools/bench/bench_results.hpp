@@ -25,7 +25,8 @@ struct PacketFigures {
 struct TetrayFigures {
   double build_bih_ms = 0;
   double build_sah_ms = 0;
-  double bvh_bytes_per_tet = 0;  // BVH nodes + tet id array, per tet
+  double bvh_bytes_per_tet = 0;     // BVH nodes + tet id array, per tet
+  double volume_bytes_per_tet = 0;  // the vertex store: vertices, tets, point map, per tet
   std::size_t bvh_nodes = 0;
   std::vector<PacketFigures> packets;  // in render::kPacketSizes order
 };
@@ -66,6 +67,7 @@ struct SceneFigures {
   // CPU time the process used / (wall time x threads) while measuring this scene: well below 1
   // means other processes held the cores and the absolute times are inflated (ratios less so).
   double cpu_share = 0;
+  double peak_rss_mib = 0;  // the process's peak resident memory once this scene was measured
   TetrayFigures tetray;
   ReferenceFigures ref;
   RefitFigures refit;

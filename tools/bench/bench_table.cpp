@@ -19,6 +19,8 @@ void print_tetray(const SceneFigures& s) {
       "  BVH build      BIH %.1f ms, SAH %.1f ms; %zu nodes, %.1f B/tet (nodes, leaf lists, tet "
       "ids)\n",
       s.tetray.build_bih_ms, s.tetray.build_sah_ms, s.tetray.bvh_nodes, s.tetray.bvh_bytes_per_tet);
+  std::printf("  memory         vertex store %.1f B/tet; peak RSS of the bench so far %.0f MiB\n",
+              s.tetray.volume_bytes_per_tet, s.peak_rss_mib);
   std::printf("  trace  packet  %9s %8s | per frame (M): %8s %8s %8s %8s %8s %8s\n", "ms",
               "Mrays/s", "pkt-box", "ray-box", "isorange", "extract", "ray-iso", "culled");
   for (const PacketFigures& p : s.tetray.packets) {

@@ -47,6 +47,8 @@ TetrayRun measure_tetray(const GyroidTwist& scene, const render::Camera& camera)
   figures.build_bih_ms = build_ms(volume, render::BvhBuilder::bih);
   figures.build_sah_ms = build_ms(volume, render::BvhBuilder::sah);
   figures.bvh_bytes_per_tet = bytes_per_tet(volume, bvh);
+  figures.volume_bytes_per_tet =
+      static_cast<double>(volume.bytes()) / static_cast<double>(volume.tets.size());
   figures.bvh_nodes = bvh.nodes.size();
   for (const render::PacketSize packet : render::kPacketSizes)
     figures.packets.push_back(measure_packet(volume, bvh, camera, packet));
