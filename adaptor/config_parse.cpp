@@ -122,6 +122,8 @@ render::UpdatePolicy parse_bvh(const YamlReader& r, const YAML::Node& node) {
   return policy;
 }
 
+}  // namespace
+
 CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::string& key) {
   r.allow_keys(node, key, {"eye", "look_at", "up", "fov_deg", "auto_fit", "view_direction"});
   CameraSpec cam;
@@ -157,6 +159,8 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
   }
   return cam;
 }
+
+namespace {
 
 // The memory a scene's image costs, per pixel: the framebuffer (RGBA and depth floats and a hit
 // key: 24 B), the composited copy waiting for the writer (24 B) and its encoded file (at most
@@ -280,7 +284,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   r.allow_keys(node, key,
                {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
                 "camera", "image", "background", "lights", "trigger", "annotations", "orbit",
-                "volume", "shading", "clip"});
+                "volume", "shading", "clip", "camera_path"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -309,6 +313,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
     s.annotations = parse_annotations(r, node["annotations"], child_key(key, "annotations"), s);
   }
   if (node["orbit"]) s.orbit = parse_orbit(r, node["orbit"], child_key(key, "orbit"), s);
+  if (node["camera_path"]) s.keyframes = parse_camera_path(r, node, key);
   s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
                               : default_trigger;
   return s;
