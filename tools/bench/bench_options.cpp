@@ -17,6 +17,9 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--steps", options.steps, "time steps t = 0, 0.1, ... for the refit figures")
       ->check(CLI::Range(1, 100));
+  app.add_option("--dvr-study", options.dvr_study_path,
+                 "only run the volume-rendering error-against-time study on the first size, "
+                 "writing its CSV here");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

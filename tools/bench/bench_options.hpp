@@ -9,9 +9,10 @@ namespace tetray::bench {
 struct BenchOptions {
   std::vector<int> sizes{32, 56, 88, 133};  // gyroid-twist resolutions n (6 n^3 tets)
   int threads = 2;
-  std::string json_path;  // empty: no JSON
-  int size_px = 1024;     // square image
-  int steps = 5;          // time steps t = 0, 0.1, ... for the refit figures
+  std::string json_path;       // empty: no JSON
+  int size_px = 1024;          // square image
+  int steps = 5;               // time steps t = 0, 0.1, ... for the refit figures
+  std::string dvr_study_path;  // not empty: only the volume-rendering error study, to this CSV
 };
 
 // Parses argv; on --help or an error prints the message and returns the exit code to leave
