@@ -48,15 +48,18 @@ std::string step_text(double edges) {
 
 }  // namespace
 
-ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b) {
+ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b, int channels) {
   if (a.rgba.size() != b.rgba.size()) throw std::runtime_error("images of different sizes");
   ImageError error;
+  std::size_t count = 0;
   for (std::size_t k = 0; k < a.rgba.size(); ++k) {
+    if (static_cast<int>(k % 4) >= channels) continue;
     const double d = std::abs(static_cast<double>(a.rgba[k]) - b.rgba[k]);
     error.mean += d;
     error.max = std::max(error.max, d);
+    ++count;
   }
-  error.mean /= static_cast<double>(std::max<std::size_t>(a.rgba.size(), 1));
+  error.mean /= static_cast<double>(std::max<std::size_t>(count, 1));
   return error;
 }
 

@@ -20,8 +20,10 @@ struct ImageError {
   double max = 0;
 };
 
-// Both images of the same size (linear, premultiplied RGBA).
-ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b);
+// Both images of the same size (linear, premultiplied RGBA), over the first `channels` of each
+// pixel (3: RGB only).
+ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b,
+                       int channels = 4);
 
 struct DvrStudyRow {
   std::string step;  // "exact", or the sampling step in mean tet edges

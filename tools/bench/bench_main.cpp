@@ -62,6 +62,11 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   figures.refit =
       measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
   figures.walk = measure_walk(scene, camera);
+  if (n == options.sizes.front()) {
+    figures.vtk_volume = measure_vtk_volume(scene, camera, options.threads);
+  } else {
+    figures.vtk_volume.skipped = "measured at the first size only";
+  }
   figures.shading = measure_shading(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   return figures;
