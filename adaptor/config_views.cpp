@@ -12,9 +12,9 @@ namespace {
 // config_parse.cpp allows 1e-6 rad; an orbit keeps a clear margin).
 constexpr double kPoleMarginDeg = 1;
 
-// Between two keyframes the interpolated camera is checked at this many times (the segment's
-// inner points): a frame that degenerates between them is still finite when drawn, as
-// render::make_frame falls back to the default camera's, but the image is not the one meant.
+// The time between two keyframes is cut into this many equal parts and the interpolated camera
+// checked at each inner cut: a frame that degenerates between the cuts is still finite when
+// drawn, as render::make_frame falls back to the default camera's, but not the image meant.
 constexpr int kSegmentChecks = 256;
 
 std::string number_text(double value) {
