@@ -470,8 +470,10 @@ Status Adaptor::Impl::write_rank_images() {
 
 render::Camera Adaptor::Impl::camera_for(const SceneState& s, const SceneRanges& ranges) const {
   const config::CameraSpec& spec = s.config.camera;
-  if (!spec.auto_fit) {
-    render::Camera camera = spec.fixed;
+  const std::vector<config::Keyframe>& keyframes = s.config.keyframes;
+  if (!keyframes.empty() || !spec.auto_fit) {
+    render::Camera camera =
+        keyframes.empty() ? spec.fixed : keyframe_camera(keyframes, s.record.time);
     camera.width = s.config.width;
     camera.height = s.config.height;
     return camera;

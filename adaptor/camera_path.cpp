@@ -1,5 +1,6 @@
 #include "camera_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -37,6 +38,33 @@ render::Camera orbit_camera(const render::Camera& base, const View& view) {
   render::Camera camera = base;
   camera.eye = base.look_at + distance * (std::cos(elevation) * turned + std::sin(elevation) * u);
   return camera;
+}
+
+render::Camera keyframe_camera(const std::vector<config::Keyframe>& keyframes, double time) {
+  const auto later = std::upper_bound(
+      keyframes.begin(), keyframes.end(), time,
+      [](double t, const config::Keyframe& keyframe) { return t < keyframe.time; });
+  if (later == keyframes.begin()) return keyframes.front().camera;
+  const config::Keyframe& a = *(later - 1);
+  // At a keyframe's time the keyframe itself, bit for bit (renormalizing its unit up vector
+  // could move the last bit); after the last keyframe, the last.
+  if (later == keyframes.end() || a.time == time) return a.camera;
+  const config::Keyframe& b = *later;
+  const double s = (time - a.time) / (b.time - a.time);
+  const auto lerp = [s](auto x, auto y) { return x + s * (y - x); };
+  render::Camera camera = a.camera;
+  camera.eye = lerp(a.camera.eye, b.camera.eye);
+  camera.look_at = lerp(a.camera.look_at, b.camera.look_at);
+  camera.up = normalize(lerp(a.camera.up, b.camera.up));
+  camera.fov_deg = lerp(a.camera.fov_deg, b.camera.fov_deg);
+  return camera;
+}
+
+bool degenerate_camera(const render::Camera& camera) {
+  const render::Vec3d forward = camera.look_at - camera.eye;
+  if (dot(forward, forward) == 0 || dot(camera.up, camera.up) == 0) return true;
+  const render::Vec3d c = cross(normalize(forward), normalize(camera.up));
+  return !(dot(c, c) > 1e-12);
 }
 
 }  // namespace tetray

@@ -71,6 +71,12 @@ struct Orbit {
   std::vector<double> elevation_deg{0};
 };
 
+// An explicit camera at a simulated time: one point of a scene's `camera_path` (config_views.cpp).
+struct Keyframe {
+  double time = 0;
+  render::Camera camera{};
+};
+
 // Direct volume rendering of the scene's field (adaptor/config_volume.cpp, docs/architecture.md
 // §8): a colormap over a value range and opacity points, per unit distance.
 struct VolumeSpec {
@@ -95,6 +101,7 @@ struct Scene {
   Trigger trigger{};
   Annotations annotations{};
   Orbit orbit{};
+  std::vector<Keyframe> keyframes;   // strictly increasing times; empty: the camera as given
   std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
   ShadingSpec shading{};
   float lod_node_pixels = 0;  // level of detail (config_lod.hpp); 0: exact images

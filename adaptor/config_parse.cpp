@@ -123,6 +123,8 @@ render::UpdatePolicy parse_bvh(const YamlReader& r, const YAML::Node& node) {
   return policy;
 }
 
+}  // namespace
+
 CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::string& key) {
   r.allow_keys(node, key, {"eye", "look_at", "up", "fov_deg", "auto_fit", "view_direction"});
   CameraSpec cam;
@@ -158,6 +160,8 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
   }
   return cam;
 }
+
+namespace {
 
 // The memory a scene's image costs, per pixel: the framebuffer (RGBA and depth floats and a hit
 // key: 24 B), the composited copy waiting for the writer (24 B) and its encoded file (at most
@@ -281,7 +285,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   r.allow_keys(node, key,
                {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
                 "camera", "image", "background", "lights", "trigger", "annotations", "orbit",
-                "volume", "shading", "clip", "lod"});
+                "volume", "shading", "clip", "lod", "camera_path"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -315,6 +319,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
       r.fail(node["lod"], child_key(key, "lod"), "applies to isosurfaces, not to volume scenes");
     s.lod_node_pixels = parse_lod(r, node["lod"], child_key(key, "lod"));
   }
+  if (node["camera_path"]) s.keyframes = parse_camera_path(r, node, key);
   s.trigger = node["trigger"] ? parse_trigger(r, node["trigger"], child_key(key, "trigger"))
                               : default_trigger;
   return s;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "render/walk/fixed_step.hpp"
 #include "render/walk/segment_integral.hpp"
 #include "render/walk/tet_walk.hpp"
 
@@ -28,7 +29,8 @@ class RayGatherer {
         options_(options),
         breakpoints_(breakpoints),
         depth_per_t_(depth_per_t),
-        out_(out) {}
+        out_(out),
+        sampler_(options.transfer, options.sample_step) {}
 
   // Gathers one tet's stretch; false once the ray's opacity reached the termination.
   bool add(const WalkSegment& s) {
@@ -38,9 +40,12 @@ class RayGatherer {
       visible_ = false;
       run_ = {};
       fragment_ = {};
+      sampler_.restart(s.t_in);
     }
     const Gathered g =
-        integrate_segment(options_.transfer, breakpoints_, s.t_out - s.t_in, s.f_in, s.f_out);
+        options_.sample_step > 0
+            ? sampler_.stretch(s.t_in, s.t_out, s.f_in, s.f_out)
+            : integrate_segment(options_.transfer, breakpoints_, s.t_out - s.t_in, s.f_in, s.f_out);
     // The fragment starts where the ray first meets opacity, which does not depend on where
     // a rank's sub-domain begins.
     if (!visible_ && g.transmittance < 1) {
@@ -74,6 +79,7 @@ class RayGatherer {
   const std::vector<double>& breakpoints_;
   double depth_per_t_;
   std::vector<Fragment>& out_;
+  FixedStepSampler sampler_;  // used when options_.sample_step > 0
   bool open_ = false, visible_ = false, terminated_ = false;
   Gathered run_;
   Fragment fragment_;

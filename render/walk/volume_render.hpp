@@ -20,6 +20,9 @@ namespace tetray::render {
 struct VolumeRenderOptions {
   TransferFunction transfer;
   double termination = 0.99;  // opacity that ends a run; >= 1: never (no early termination)
+  // > 0: fixed-step sampling at this distance (fixed_step.hpp) instead of the exact integral,
+  // the baseline of the error-against-time study.
+  double sample_step = 0;
 };
 
 struct VolumeRenderStats {

@@ -1,13 +1,18 @@
 // Orbit views through the adaptor: a half turn about up mirrors a scene symmetric under it, a
 // view equals the explicit camera it stands for, and the Cinema table (spec D) lists one row per
 // view with its time, phi, theta, scene, step and files, replaced, not doubled, when a step is
-// rendered again. An elevation reaching the pole of up fails creation.
+// rendered again. An elevation reaching the pole of up fails creation. Keyframed camera paths:
+// at a keyframe's time, halfway between two and outside their span the image is byte for byte
+// the explicit camera's, and a bad path fails creation naming the key and the file.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "plane_scene.hpp"
 #include "support/png_read.hpp"
@@ -20,7 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // The plane z = 0 of f = z (inside the tets of a 3-cell box, not on their faces), colored by
-// g = x, seen head-on from z = 5; `camera` and `orbit` lines replace or add to that.
+// g = x, seen head-on from z = 5; `camera` and `orbit` lines replace or add to that (an empty
+// `camera`: no camera key).
 std::string config(const fs::path& out, const std::string& scene_lines,
                    const std::string& camera =
                        "{eye: [0, 0, 5], look_at: [0, 0, 0], up: [0, 1, 0], "
@@ -33,12 +39,9 @@ std::string config(const fs::path& out, const std::string& scene_lines,
          "    isovalues: [0]\n"
          "    color_by: g\n"
          "    colormap: coolwarm\n"
-         "    color_range: [-1, 1]\n"
-         "    camera: " +
-         camera +
-         "\n"
-         "    image: {width: 64, height: 48}\n" +
-         scene_lines;
+         "    color_range: [-1, 1]\n" +
+         (camera.empty() ? "" : "    camera: " + camera + "\n") +
+         "    image: {width: 64, height: 48}\n" + scene_lines;
 }
 
 class Views : public ::testing::Test {
@@ -179,6 +182,136 @@ TEST_F(Views, ElevationAtThePoleFailsCreation) {
   EXPECT_EQ(Adaptor::create_from_yaml(MPI_COMM_WORLD, yaml, status), nullptr);
   EXPECT_NE(status.message.find("orbit.elevation[1]"), std::string::npos) << status.message;
   EXPECT_NE(status.message.find("pole"), std::string::npos) << status.message;
+}
+
+// Two cameras far enough apart that their images differ in most pixels: A head-on with a narrow
+// field of view, B from above right, rolled 45 degrees about its view and wider. Halfway between
+// them (eye, look_at and fov averaged, up renormalized) every number is exact in binary, so the
+// interpolated camera and the explicit one are the same bits.
+const std::string kCameraA = "eye: [0, 0, 5], look_at: [0, 0, 0], up: [-1, 1, 0], fov_deg: 30";
+const std::string kCameraB = "eye: [2, 1, 3], look_at: [0.5, 0, 0], up: [1, 1, 0], fov_deg: 50";
+const std::string kCameraHalfway =
+    "eye: [1, 0.5, 4], look_at: [0.25, 0, 0], up: [0, 1, 0], fov_deg: 40";
+
+// The scene lines of a camera path through A at time `ta` and B at time `tb`.
+std::string path_a_to_b(double ta, double tb) {
+  return "    camera_path:\n      keyframes:\n        - {time: " + std::to_string(ta) + ", " +
+         kCameraA + "}\n        - {time: " + std::to_string(tb) + ", " + kCameraB + "}\n";
+}
+
+class CameraPaths : public Views {
+ protected:
+  // The image of step `step` under `out` (a scene without an orbit).
+  static PngPixels step_image(const fs::path& out, int step) {
+    return read_png_rgba8(
+        (out / "plane" / ("plane_00000" + std::to_string(step) + ".png")).string());
+  }
+
+  // The image of the explicit camera `camera` (one step, written under `name`).
+  PngPixels explicit_image(const char* name, const std::string& camera) {
+    const fs::path out = dir_.path() / name;
+    EXPECT_TRUE(run(config(out, "", "{" + camera + "}")).ok());
+    return step_image(out, 1);
+  }
+
+  // Renders the path through A at `ta` and B at `tb` at `steps` (time 0.5 x step).
+  fs::path run_path(double ta, double tb, const std::vector<int>& steps) {
+    const fs::path out = dir_.path() / "path";
+    const Status status = run(config(out, path_a_to_b(ta, tb), ""), steps);
+    EXPECT_TRUE(status.ok()) << status.message;
+    return out;
+  }
+
+  void expect_same(const PngPixels& a, const PngPixels& b, const char* what) {
+    ASSERT_TRUE(a.error.empty() && b.error.empty()) << what << ": " << a.error << b.error;
+    EXPECT_EQ(a.width, b.width) << what;
+    EXPECT_TRUE(a.rgba == b.rgba) << what << ": " << differing_pixels(a, b, false)
+                                  << " pixels differ";
+  }
+};
+
+TEST_F(CameraPaths, AtAKeyframesTimeTheImageIsItsCamera) {
+  const fs::path out = run_path(0.5, 1.5, {1, 3});  // times 0.5 and 1.5
+  const PngPixels a = explicit_image("a", kCameraA), b = explicit_image("b", kCameraB);
+  expect_same(step_image(out, 1), a, "step 1, keyframe A");
+  expect_same(step_image(out, 3), b, "step 3, keyframe B");
+  EXPECT_GT(differing_pixels(a, b, false), a.width * a.height / 4);  // the test tells them apart
+  // One view per step: Cinema's phi and theta are 0, the camera's motion is in `time`.
+  const auto rows = read_csv((out / "plane.cdb" / "data.csv").string());
+  ASSERT_EQ(rows.size(), 3u);
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    EXPECT_EQ(cell(rows, r, "phi"), "0");
+    EXPECT_EQ(cell(rows, r, "theta"), "0");
+  }
+}
+
+TEST_F(CameraPaths, HalfwayTheImageIsTheInterpolatedCamera) {
+  const fs::path out = run_path(0, 1, {1});  // time 0.5
+  const PngPixels halfway = explicit_image("halfway", kCameraHalfway);
+  expect_same(step_image(out, 1), halfway, "step 1, halfway");
+  for (const auto& [name, camera] : {std::pair{"a", kCameraA}, std::pair{"b", kCameraB}}) {
+    const PngPixels end = explicit_image(name, camera);
+    EXPECT_GT(differing_pixels(halfway, end, false), halfway.width * halfway.height / 20) << name;
+  }
+}
+
+TEST_F(CameraPaths, OutsideTheKeyframesTheEndKeyframeHolds) {
+  const fs::path out = run_path(1, 2, {0, 1, 6});  // times 0, 0.5 (both before) and 3 (after)
+  const PngPixels a = explicit_image("a", kCameraA);
+  expect_same(step_image(out, 0), a, "step 0, before A");
+  expect_same(step_image(out, 1), a, "step 1, before A");
+  expect_same(step_image(out, 6), explicit_image("b", kCameraB), "step 6, after B");
+}
+
+// Written to a file: the message names the file, the key and the problem.
+std::string create_error(const fs::path& file, const std::string& yaml) {
+  std::FILE* f = std::fopen(file.string().c_str(), "w");
+  if (f == nullptr) return "cannot write " + file.string();
+  std::fputs(yaml.c_str(), f);
+  std::fclose(f);
+  Status status;
+  const auto adaptor = Adaptor::create(MPI_COMM_WORLD, file.string(), status);
+  return adaptor ? std::string("created") : status.message;
+}
+
+TEST_F(CameraPaths, ABadPathFailsCreationNamingTheKeyAndFile) {
+  const std::string a = "{time: 0, " + kCameraA + "}", b = "{time: 1, " + kCameraB + "}";
+  const auto path = [](const std::vector<std::string>& keyframes) {
+    std::string lines = "    camera_path:\n      keyframes:\n";
+    for (const std::string& k : keyframes) lines += "        - " + k + "\n";
+    return lines;
+  };
+  const std::string key = "scenes[0].camera_path.keyframes";
+  const struct {
+    std::string scene_lines, camera, key, words;
+  } cases[] = {
+      {path({a}), "", key, "give 2 to"},
+      {path({b, a}), "", key + "[1].time", "strictly increasing"},
+      {path({a, "{time: 0, " + kCameraB + "}"}), "", key + "[1].time", "strictly increasing"},
+      {path({a, "{time: 1, eye: [0, 0, 5], look_at: [0, 0, 0], up: [0, 0, 2]}"}), "", key + "[1]",
+       "parallel to up"},
+      {path({a, "{time: 1, eye: [0, 0, 5], look_at: [0, 0, 0], up: [0, 0, 0]}"}), "",
+       key + "[1].up", "zero vector"},
+      // Up turns through zero halfway between the keyframes.
+      {path({"{time: 0, eye: [0, 0, 5], look_at: [0, 0, 0], up: [1, 0, 0]}",
+             "{time: 1, eye: [0, 0, 5], look_at: [0, 0, 0], up: [-1, 0, 0]}"}),
+       "", key + "[1]", "at time 0.5"},
+      {path({a, "{eye: [0, 0, 5], look_at: [0, 0, 0]}"}), "", key + "[1].time", "missing"},
+      {path({a, b}) + "    orbit: {azimuth: [0, 90]}\n", "", "scenes[0].orbit",
+       "not allowed with camera_path"},
+      {path({a, b}), "{eye: [0, 0, 5], look_at: [0, 0, 0]}", "scenes[0].camera",
+       "not allowed with camera_path"},
+  };
+  const fs::path file = dir_.path() / "bad_path.yaml";
+  for (const auto& c : cases) {
+    const std::string message =
+        create_error(file, config(dir_.path() / "x", c.scene_lines, c.camera));
+    EXPECT_NE(message.find(file.string() + ":"), std::string::npos) << message;
+    EXPECT_NE(message.find(c.key + ": "), std::string::npos) << c.key << " | " << message;
+    EXPECT_NE(message.find(c.words), std::string::npos) << c.words << " | " << message;
+  }
+  // The good path of the same lines is created.
+  EXPECT_EQ(create_error(file, config(dir_.path() / "x", path({a, b}), "")), "created");
 }
 
 }  // namespace

@@ -69,6 +69,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["ref"] = reference(figures.ref);
   json["refit"] = refit(figures.refit);
   json["walk"] = walk_json(figures.walk);
+  json["walk"]["vtk_volume"] = vtk_volume_json(figures.vtk_volume);
   json["shading"] = shading_json(figures.shading);
   return json;
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bench_depth_compare.hpp"
+#include "bench_dvr_study.hpp"
 #include "bench_json.hpp"
 #include "bench_lod.hpp"
 #include "bench_machine.hpp"
@@ -62,6 +63,11 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   figures.refit =
       measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
   figures.walk = measure_walk(scene, camera);
+  if (n == options.sizes.front()) {
+    figures.vtk_volume = measure_vtk_volume(scene, camera, options.threads);
+  } else {
+    figures.vtk_volume.skipped = "measured at the first size only";
+  }
   figures.shading = measure_shading(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   figures.peak_rss_mib = peak_rss_mib();
@@ -103,6 +109,18 @@ BenchReport run_bench(const BenchOptions& options) {
   return report;
 }
 
+// The volume-rendering error study alone (bench_dvr_study.hpp), on the first size.
+void study_volume_rendering(const BenchOptions& options) {
+  tbb::task_arena arena(options.threads);
+  DvrStudy study;
+  arena.execute([&] {
+    study =
+        run_dvr_study(make_gyroid_twist(options.sizes.front(), 0.0), bench_camera(options.size_px));
+  });
+  print_dvr_study(study);
+  write_dvr_study_csv(study, options.dvr_study_path);
+}
+
 }  // namespace
 }  // namespace tetray::bench
 
@@ -112,6 +130,10 @@ int main(int argc, char** argv) {
   const BenchOptions options = parse_options(argc, argv, exit_code);
   if (exit_code >= 0) return exit_code;
   try {
+    if (!options.dvr_study_path.empty()) {
+      study_volume_rendering(options);
+      return 0;
+    }
     const BenchReport report = run_bench(options);
     if (!options.json_path.empty()) write_json(report, options.json_path);
     return 0;

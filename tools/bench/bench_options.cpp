@@ -19,6 +19,9 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
       ->check(CLI::Range(1, 100));
   app.add_option("--lod-study", options.lod_study_path,
                  "run only the level-of-detail study for the sizes and write it as CSV here");
+  app.add_option("--dvr-study", options.dvr_study_path,
+                 "only run the volume-rendering error-against-time study on the first size, "
+                 "writing its CSV here");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -13,6 +13,7 @@ struct BenchOptions {
   int size_px = 1024;          // square image
   int steps = 5;               // time steps t = 0, 0.1, ... for the refit figures
   std::string lod_study_path;  // non-empty: only the level-of-detail study, as CSV here
+  std::string dvr_study_path;  // not empty: only the volume-rendering error study, to this CSV
 };
 
 // Parses argv; on --help or an error prints the message and returns the exit code to leave

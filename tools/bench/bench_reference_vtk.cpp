@@ -31,6 +31,8 @@ vtkSmartPointer<Array> view_array(const std::vector<T>& values, int components) 
   return array;
 }
 
+}  // namespace
+
 vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<std::int64_t>& tets) {
   vtkNew<vtkCellArray> cells;
   if (!cells->SetData(4, view_array<vtkAOSDataArrayTemplate<long>>(tets, 1)))
@@ -49,6 +51,8 @@ void set_grid_step(vtkUnstructuredGrid& grid, const std::vector<double>& points,
   scalars->SetName("f");
   grid.GetPointData()->SetScalars(scalars);
 }
+
+namespace {
 
 TriangleSoup to_soup(vtkPolyData& surface) {
   TriangleSoup soup;

@@ -6,9 +6,18 @@
 #include <memory>
 #include <vector>
 
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::bench {
+
+// A grid of the tets (4 point indices each) that views them without a copy; `tets` must outlive
+// it. set_grid_step gives it the step's points (xyz interleaved) and point field "f", also viewed.
+vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<std::int64_t>& tets);
+void set_grid_step(vtkUnstructuredGrid& grid, const std::vector<double>& points,
+                   const std::vector<double>& field);
 
 // Unmerged triangles as Embree takes them: xyz per vertex (padded so the last vertex can be read
 // as 16 bytes, as Embree's shared buffers require) and three indices per triangle.

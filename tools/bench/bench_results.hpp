@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench_shading.hpp"
+#include "bench_vtk_volume.hpp"
 #include "bench_walk.hpp"
 #include "render/trace/trace.hpp"
 
@@ -72,6 +73,7 @@ struct SceneFigures {
   ReferenceFigures ref;
   RefitFigures refit;
   WalkFigures walk;
+  VtkVolumeFigures vtk_volume;  // measured at the run's first size only
   ShadingFigures shading;
 
   const PacketFigures& packet(render::PacketSize size) const;

@@ -83,6 +83,7 @@ void print_scene(const SceneFigures& s) {
   print_reference(s.ref);
   print_refit(s.refit);
   print_walk(s.walk);
+  print_vtk_volume(s.vtk_volume);
   print_shading(s.shading);
   print_targets(s);
   std::fflush(stdout);

@@ -9,9 +9,8 @@
 #include "render/walk/volume_render.hpp"
 
 namespace tetray::bench {
-namespace {
 
-// The field's transfer function: transparent below 0.2, rising to 4 per half unit at 1.5.
+// Transparent below 0.2, rising to 4 per half unit at 1.5.
 render::VolumeRenderOptions dvr_options(double termination) {
   render::VolumeRenderOptions options;
   options.transfer = {
@@ -19,6 +18,8 @@ render::VolumeRenderOptions dvr_options(double termination) {
   options.termination = termination;
   return options;
 }
+
+namespace {
 
 template <typename Layout>
 LayoutFigures measure_layout(const render::TetVolume& volume, const render::BoundaryFaces& boundary,

@@ -8,6 +8,7 @@
 #include <json/json.h>
 
 #include "render/trace/camera.hpp"
+#include "render/walk/volume_render.hpp"
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::bench {
@@ -32,6 +33,9 @@ struct WalkFigures {
   double dvr_full_mtets_per_s = 0;
   double lost_rays = 0;
 };
+
+// The field's transfer function, ending rays at opacity `termination` (1: never).
+render::VolumeRenderOptions dvr_options(double termination);
 
 WalkFigures measure_walk(const GyroidTwist& scene, const render::Camera& camera);
 void print_walk(const WalkFigures& figures);

@@ -1,0 +1,120 @@
+#include "bench_dvr_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "bench_scene.hpp"
+#include "bench_timing.hpp"
+#include "bench_walk.hpp"
+#include "render/walk/volume_render.hpp"
+
+namespace tetray::bench {
+namespace {
+
+// The finest compared step over the reference's.
+constexpr int kReferenceRefinement = 16;
+
+double mean_tet_edge(const BoxMesh& mesh) {
+  const auto point = [&](std::int64_t p) {
+    return render::Vec3d{mesh.points[3 * p], mesh.points[3 * p + 1], mesh.points[3 * p + 2]};
+  };
+  double sum = 0;
+  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+    const std::int64_t* v = &mesh.tets[4 * t];
+    for (int a = 0; a < 4; ++a) {
+      for (int b = a + 1; b < 4; ++b) sum += length(point(v[a]) - point(v[b]));
+    }
+  }
+  return sum / (6.0 * static_cast<double>(mesh.tet_count()));
+}
+
+// One frame of the scene volume-rendered with `sample_step` (0: the exact integral).
+render::Framebuffer render_frame(const render::TetVolume& volume, const render::WalkStructure& walk,
+                                 const render::Camera& camera, double sample_step) {
+  render::VolumeRenderOptions options = dvr_options(1.0);
+  options.sample_step = sample_step;
+  render::FragmentImage fragments = render::render_volume(volume, walk, camera, options);
+  return render::resolve(fragments);
+}
+
+std::string step_text(double edges) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", edges);
+  return text;
+}
+
+}  // namespace
+
+ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b, int channels) {
+  if (a.rgba.size() != b.rgba.size()) throw std::runtime_error("images of different sizes");
+  ImageError error;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < a.rgba.size(); ++k) {
+    if (static_cast<int>(k % 4) >= channels) continue;
+    const double d = std::abs(static_cast<double>(a.rgba[k]) - b.rgba[k]);
+    error.mean += d;
+    error.max = std::max(error.max, d);
+    ++count;
+  }
+  error.mean /= static_cast<double>(std::max<std::size_t>(count, 1));
+  return error;
+}
+
+DvrStudy run_dvr_study(const GyroidTwist& scene, const render::Camera& camera, int halvings) {
+  render::TetVolume volume;
+  render::Bvh bvh;
+  load_scene(scene, volume, bvh);
+  const render::WalkStructure walk = render::build_walk_structure(volume);
+  DvrStudy study;
+  study.mean_edge = mean_tet_edge(scene.mesh);
+  study.reference_step = std::ldexp(1.0, -halvings) / kReferenceRefinement;
+  render::Framebuffer reference;
+  study.reference_ms = time_ms([&] {
+    reference = render_frame(volume, walk, camera, study.reference_step * study.mean_edge);
+  });
+  const auto measure = [&](const std::string& name, double sample_step) {
+    render::Framebuffer image;
+    DvrStudyRow row;
+    row.step = name;
+    row.ms =
+        best_ms(kRepetitions, [&] { image = render_frame(volume, walk, camera, sample_step); });
+    row.error = image_error(image, reference);
+    study.rows.push_back(row);
+  };
+  measure("exact", 0);
+  for (int h = 0; h <= halvings; ++h) {
+    const double edges = std::ldexp(1.0, -h);
+    measure(step_text(edges), edges * study.mean_edge);
+  }
+  return study;
+}
+
+void write_dvr_study_csv(const DvrStudy& study, const std::string& path) {
+  std::ofstream out(path);
+  out << "step,ms,mean_error,max_error\n";
+  char line[128];
+  for (const DvrStudyRow& row : study.rows) {
+    std::snprintf(line, sizeof line, "%s,%.4f,%.6e,%.6e\n", row.step.c_str(), row.ms,
+                  row.error.mean, row.error.max);
+    out << line;
+  }
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void print_dvr_study(const DvrStudy& study) {
+  std::printf(
+      "volume rendering error against time: mean tet edge %.4g, reference step %.6g edges "
+      "(%.0f ms)\n",
+      study.mean_edge, study.reference_step, study.reference_ms);
+  std::printf("  %-8s %10s %12s %12s\n", "step", "ms", "mean error", "max error");
+  for (const DvrStudyRow& row : study.rows) {
+    std::printf("  %-8s %10.1f %12.3e %12.3e\n", row.step.c_str(), row.ms, row.error.mean,
+                row.error.max);
+  }
+}
+
+}  // namespace tetray::bench

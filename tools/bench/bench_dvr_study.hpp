@@ -1,0 +1,48 @@
+// The error-against-run-time study of volume rendering (docs/architecture.md §8): tetray's
+// exact per-tet integral against fixed-step sampling along the same walk
+// (render/walk/fixed_step.hpp) at steps of 1, 1/2, 1/4, ... of the mean tet edge, each frame's
+// time and its image error against a dense reference: the same discrete sum at a step 16 times
+// finer than the finest compared, accumulated in double. No early termination anywhere, so only
+// the integrators differ.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/core/framebuffer.hpp"
+#include "render/trace/camera.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace tetray::bench {
+
+struct ImageError {
+  double mean = 0;  // mean over pixels and RGBA channels of |a - b|
+  double max = 0;
+};
+
+// Both images of the same size (linear, premultiplied RGBA), over the first `channels` of each
+// pixel (3: RGB only).
+ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b,
+                       int channels = 4);
+
+struct DvrStudyRow {
+  std::string step;  // "exact", or the sampling step in mean tet edges
+  double ms = 0;     // best of kRepetitions frames
+  ImageError error;
+};
+
+struct DvrStudy {
+  double mean_edge = 0;       // of the mesh's tets, world units
+  double reference_step = 0;  // in mean tet edges
+  double reference_ms = 0;
+  std::vector<DvrStudyRow> rows;  // exact first, then the steps coarse to fine
+};
+
+// `halvings` + 1 fixed steps: 1, 1/2, ..., 1/2^halvings mean edges.
+DvrStudy run_dvr_study(const GyroidTwist& scene, const render::Camera& camera, int halvings = 4);
+
+// Columns step,ms,mean_error,max_error; throws on a write error.
+void write_dvr_study_csv(const DvrStudy& study, const std::string& path);
+void print_dvr_study(const DvrStudy& study);
+
+}  // namespace tetray::bench
