@@ -48,21 +48,6 @@ std::string step_text(double edges) {
 
 }  // namespace
 
-ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b, int channels) {
-  if (a.rgba.size() != b.rgba.size()) throw std::runtime_error("images of different sizes");
-  ImageError error;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < a.rgba.size(); ++k) {
-    if (static_cast<int>(k % 4) >= channels) continue;
-    const double d = std::abs(static_cast<double>(a.rgba[k]) - b.rgba[k]);
-    error.mean += d;
-    error.max = std::max(error.max, d);
-    ++count;
-  }
-  error.mean /= static_cast<double>(std::max<std::size_t>(count, 1));
-  return error;
-}
-
 DvrStudy run_dvr_study(const GyroidTwist& scene, const render::Camera& camera, int halvings) {
   render::TetVolume volume;
   render::Bvh bvh;
@@ -81,7 +66,7 @@ DvrStudy run_dvr_study(const GyroidTwist& scene, const render::Camera& camera, i
     row.step = name;
     row.ms =
         best_ms(kRepetitions, [&] { image = render_frame(volume, walk, camera, sample_step); });
-    row.error = image_error(image, reference);
+    row.error = image_error(reference, image, camera);
     study.rows.push_back(row);
   };
   measure("exact", 0);
@@ -98,7 +83,7 @@ void write_dvr_study_csv(const DvrStudy& study, const std::string& path) {
   char line[128];
   for (const DvrStudyRow& row : study.rows) {
     std::snprintf(line, sizeof line, "%s,%.4f,%.6e,%.6e\n", row.step.c_str(), row.ms,
-                  row.error.mean, row.error.max);
+                  row.error.color_mean, row.error.color_max);
     out << line;
   }
   out.close();
@@ -112,8 +97,8 @@ void print_dvr_study(const DvrStudy& study) {
       study.mean_edge, study.reference_step, study.reference_ms);
   std::printf("  %-8s %10s %12s %12s\n", "step", "ms", "mean error", "max error");
   for (const DvrStudyRow& row : study.rows) {
-    std::printf("  %-8s %10.1f %12.3e %12.3e\n", row.step.c_str(), row.ms, row.error.mean,
-                row.error.max);
+    std::printf("  %-8s %10.1f %12.3e %12.3e\n", row.step.c_str(), row.ms, row.error.color_mean,
+                row.error.color_max);
   }
 }
 

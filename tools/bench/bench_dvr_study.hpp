@@ -11,24 +11,15 @@
 
 #include "render/core/framebuffer.hpp"
 #include "render/trace/camera.hpp"
+#include "tools/bench_common/image_error.hpp"
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 
-struct ImageError {
-  double mean = 0;  // mean over pixels and RGBA channels of |a - b|
-  double max = 0;
-};
-
-// Both images of the same size (linear, premultiplied RGBA), over the first `channels` of each
-// pixel (3: RGB only).
-ImageError image_error(const render::Framebuffer& a, const render::Framebuffer& b,
-                       int channels = 4);
-
 struct DvrStudyRow {
   std::string step;  // "exact", or the sampling step in mean tet edges
   double ms = 0;     // best of kRepetitions frames
-  ImageError error;
+  ImageError error;  // its color_mean and color_max (RGBA)
 };
 
 struct DvrStudy {

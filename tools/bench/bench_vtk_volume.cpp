@@ -169,7 +169,8 @@ VtkVolumeFigures measure_vtk_volume(const GyroidTwist& scene, const render::Came
     run.first_ms = time_ms([&] { window->Render(); });
     run.render_ms = best_ms(
         kRepetitions, [&] { renderer->GetActiveCamera()->Modified(); }, [&] { window->Render(); });
-    run.difference = image_error(tetray_image, read_back(*window, camera.width, camera.height), 3);
+    run.difference =
+        image_error(tetray_image, read_back(*window, camera.width, camera.height), camera, 3);
     figures.runs.push_back(run);
     renderer->RemoveVolume(volume);
   }
@@ -186,7 +187,7 @@ void print_vtk_volume(const VtkVolumeFigures& f) {
               "max |dRGB|");
   for (const VtkVolumeRun& r : f.runs) {
     std::printf("    %-36s %10.1f %10.1f %12.2e %12.2e\n", r.mapper.c_str(), r.first_ms,
-                r.render_ms, r.difference.mean, r.difference.max);
+                r.render_ms, r.difference.color_mean, r.difference.color_max);
   }
 }
 
@@ -203,8 +204,8 @@ Json::Value vtk_volume_json(const VtkVolumeFigures& f) {
     run["mapper"] = r.mapper;
     run["first_ms"] = r.first_ms;
     run["render_ms"] = r.render_ms;
-    run["mean_rgb_difference"] = r.difference.mean;
-    run["max_rgb_difference"] = r.difference.max;
+    run["mean_rgb_difference"] = r.difference.color_mean;
+    run["max_rgb_difference"] = r.difference.color_max;
     json["runs"].append(run);
   }
   return json;
