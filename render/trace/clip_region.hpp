@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/simd.hpp"
@@ -94,6 +95,10 @@ struct NoHitFilter {
   explicit NoHitFilter(const LocalClip&) {}
 };
 
+// A hit filter with kKeepsAll false answers keeps(eye, t, dx, dy, dz, base, key): the lanes of
+// rays base.. (directions d, eye `eye`) whose hit at distance t on a primitive of tie key `key`
+// it keeps.
+
 // With a region: a node is skipped when discarded, a hit kept when its point is kept.
 struct ClipNodeFilter {
   explicit ClipNodeFilter(const LocalClip& region) : clip(&region) {}
@@ -103,6 +108,10 @@ struct ClipNodeFilter {
 struct ClipHitFilter {
   static constexpr bool kKeepsAll = false;
   explicit ClipHitFilter(const LocalClip& region) : clip(&region) {}
+  template <typename F>
+  auto keeps(Vec3f eye, F t, F dx, F dy, F dz, int, std::uint32_t) const {
+    return clip->keeps(eye.x + t * dx, eye.y + t * dy, eye.z + t * dz);
+  }
   const LocalClip* clip;
 };
 
