@@ -13,6 +13,7 @@
 #include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/trace/layer_shading.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
 #include "scene_layers.hpp"
@@ -437,7 +438,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
                              options);
         if (config_.output.per_rank_images && v == 0) {
           render::FragmentImage mine = s.layers[0].color;
-          s.images[0] = flatten_layers(mine, camera);
+          s.images[0] = render::flatten_layers(mine, camera);
         }
       } else {
         render::trace_into(s.images[v], volume.volume(), volume.bvh(), camera, s.config.surfaces,

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/composite/shadow_visibility.hpp"
+#include "render/trace/layer_shading.hpp"
 #include "render/trace/shadow_rays.hpp"
 
 namespace tetray {
@@ -26,19 +26,6 @@ int deepest(const render::FragmentImage& layers) {
   for (std::size_t p = 0; p < layers.pixel_count(); ++p)
     most = std::max(most, layers.begin[p + 1] - layers.begin[p]);
   return static_cast<int>(most);
-}
-
-// Removes from layer `layer` of each pixel the part of its color each occluded light gave.
-void shadow_layer(render::FragmentImage& color, const std::vector<render::FragmentImage>& terms,
-                  int layer, const std::vector<std::uint8_t>& occluded) {
-  for (std::size_t p = 0; p < color.pixel_count(); ++p) {
-    if (occluded[p] == 0) continue;
-    const std::size_t f = color.begin[p] + static_cast<std::size_t>(layer);
-    for (std::size_t j = 0; j < terms.size(); ++j) {
-      if (!(occluded[p] & (1u << j))) continue;
-      for (int c = 0; c < 3; ++c) color.fragments[f].rgba[c] -= terms[j].fragments[f].rgba[c];
-    }
-  }
 }
 
 // Collective: the shadows of every kept layer (the writer's `merged` and `terms`), layer by layer.
@@ -67,18 +54,12 @@ Status shadow_layers(render::FragmentImage& merged, const std::vector<render::Fr
     occluded.resize(pixels, 0);
     if (const int rc = render::combine_occlusion(occluded, writer, comm.comm); rc != MPI_SUCCESS)
       return mpi_failure("combining the shadow rays' occlusion", rc);
-    if (is_writer && traced.ok()) shadow_layer(merged, terms, layer, occluded);
+    if (is_writer && traced.ok()) render::apply_layer_shadows(merged, terms, layer, occluded);
   }
   return traced;
 }
 
 }  // namespace
-
-render::Framebuffer flatten_layers(render::FragmentImage& layers, const render::Camera& camera) {
-  render::Framebuffer image = render::resolve(layers);
-  render::layer_view_depths(layers, camera, 0, image.depth);
-  return image;
-}
 
 Status composite_layers(const render::LayerImage& local, const ShadowScene& scene,
                         const Communicator& comm, int writer, render::Framebuffer& image) {
@@ -99,7 +80,7 @@ Status composite_layers(const render::LayerImage& local, const ShadowScene& scen
     shadowed = shadow_layers(merged, terms, scene, comm, writer);
     if (shadowed.code == StatusCode::mpi_error) return shadowed;
   }
-  if (comm.rank == writer) image = flatten_layers(merged, scene.camera);
+  if (comm.rank == writer) image = render::flatten_layers(merged, scene.camera);
   return shadowed;
 }
 

@@ -23,7 +23,4 @@ namespace tetray {
 Status composite_layers(const render::LayerImage& local, const ShadowScene& scene,
                         const Communicator& comm, int writer, render::Framebuffer& image);
 
-// The blended image of one rank's layers (its per-rank image), with the first layer's view depth.
-render::Framebuffer flatten_layers(render::FragmentImage& layers, const render::Camera& camera);
-
 }  // namespace tetray
