@@ -267,8 +267,11 @@ void write_layer(const Frame& f, RayPacket<S>& packet, int x0, int y0, int layer
 }
 
 // Readies the packet for the layer after the one it holds: rays whose hit is transparent are
-// traced again with that hit as the bound to pass, the others (no hit, or an opaque one) hit
-// nothing more. Returns how many rays go on.
+// traced again with that hit as the bound to pass; the others (no hit, or an opaque one) take
+// no more hits (nothing is after distance +infinity) but keep their distance, so they still
+// pass the box tests of the nodes in front of it: were they culled, the traversal's
+// first-active test (Wald et al. 2007, §5.2 II) would fail on them and test ray after ray at
+// every node. Returns how many rays go on.
 template <int S>
 int next_layer(const Frame& f, RayPacket<S>& packet, float* previous_t,
                std::uint32_t* previous_key) {
@@ -276,9 +279,9 @@ int next_layer(const Frame& f, RayPacket<S>& packet, float* previous_t,
   int going = 0;
   for (int r = 0; r < RayPacket<S>::kRays; ++r) {
     const bool on = packet.tet[r] >= 0 && f.layers->opacity[packet.iso[r]] < 1;
-    previous_t[r] = packet.tmax[r];
+    previous_t[r] = on ? packet.tmax[r] : kInf;
     previous_key[r] = packet.key[r];
-    packet.tmax[r] = on ? kInf : -kInf;
+    packet.tmax[r] = on ? kInf : packet.tmax[r];
     packet.key[r] = kNoHit;
     packet.tet[r] = -1;
     going += on;
