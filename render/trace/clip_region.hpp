@@ -88,6 +88,11 @@ struct NoNodeFilter {
   NoNodeFilter() = default;
   explicit NoNodeFilter(const LocalClip&) {}
   static constexpr bool discards(const Bounds4&) { return false; }
+  // The distance below which rays r.. seek no hits, for their box tests: 0, the eye.
+  template <typename V>
+  static V ray_tmin(int, V) {
+    return V(0.0f);
+  }
 };
 struct NoHitFilter {
   static constexpr bool kKeepsAll = true;
@@ -103,6 +108,10 @@ struct NoHitFilter {
 struct ClipNodeFilter {
   explicit ClipNodeFilter(const LocalClip& region) : clip(&region) {}
   bool discards(const Bounds4& b) const { return clip->discards(b); }
+  template <typename V>
+  static V ray_tmin(int, V) {
+    return V(0.0f);
+  }
   const LocalClip* clip;
 };
 struct ClipHitFilter {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "render/bvh/bvh.hpp"
 #include "render/core/simd.hpp"
 #include "render/core/vec.hpp"
 
@@ -33,6 +34,21 @@ struct AfterLayerFilter {
   Inner inner;
   const float* previous_t;            // per ray, the previous layer's distance
   const std::uint32_t* previous_key;  // and tie key
+};
+
+// The node filter of a layer: a ray's box test starts at its previous layer's distance, so the
+// traversal skips the subtrees in front of it, whose hits the hit filter would drop (the robust
+// far distance of a box holding a hit is never below it). Wraps the clip region's node filter.
+template <typename Inner>
+struct AfterLayerNodeFilter {
+  bool discards(const Bounds4& b) const { return inner.discards(b); }
+  template <typename V>
+  V ray_tmin(int r, V) const {
+    return simd::load(previous_t + r, V{});
+  }
+
+  Inner inner;
+  const float* previous_t;
 };
 
 }  // namespace tetray::render

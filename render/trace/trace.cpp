@@ -198,15 +198,16 @@ void write_background(const Frame& f, int x0, int y0, Framebuffer& image, TraceS
 }
 
 template <bool kClip>
+using ClipNodes = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
+template <bool kClip>
 using ClipHits = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
 
-// Traces the packet's rays through the one traversal, with the node filter of the scene's clip
-// region (none without one) and `hit_filter`: the region's, or a layer's (layer_filter.hpp).
-template <int S, bool kStats, bool kClip, typename HitFilter = ClipHits<kClip>>
-void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats, HitFilter hit_filter) {
-  using NodeFilter = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
-  PacketTraversal<S, kStats, NodeFilter> traversal(f.bvh, f.isos, packet, stats,
-                                                   NodeFilter(f.clip));
+// Traces the packet's rays through the one traversal, with the node and hit filters of the
+// scene's clip region (none without one) or of a layer (layer_filter.hpp).
+template <int S, bool kStats, typename NodeFilter, typename HitFilter>
+void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats, NodeFilter node_filter,
+                HitFilter hit_filter) {
+  PacketTraversal<S, kStats, NodeFilter> traversal(f.bvh, f.isos, packet, stats, node_filter);
   IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
   traversal.run([&](const BvhNode& leaf, int first_active) {
     if (intersect_leaf<S, kStats>(f.volume, f.isos, leaf, first_active, intersector, packet, stats))
@@ -267,11 +268,8 @@ void write_layer(const Frame& f, RayPacket<S>& packet, int x0, int y0, int layer
 }
 
 // Readies the packet for the layer after the one it holds: rays whose hit is transparent are
-// traced again with that hit as the bound to pass; the others (no hit, or an opaque one) take
-// no more hits (nothing is after distance +infinity) but keep their distance, so they still
-// pass the box tests of the nodes in front of it: were they culled, the traversal's
-// first-active test (Wald et al. 2007, §5.2 II) would fail on them and test ray after ray at
-// every node. Returns how many rays go on.
+// traced again with that hit as the bound to pass, the others (no hit, or an opaque one) hit
+// nothing more. Returns how many rays go on.
 template <int S>
 int next_layer(const Frame& f, RayPacket<S>& packet, float* previous_t,
                std::uint32_t* previous_key) {
@@ -279,9 +277,9 @@ int next_layer(const Frame& f, RayPacket<S>& packet, float* previous_t,
   int going = 0;
   for (int r = 0; r < RayPacket<S>::kRays; ++r) {
     const bool on = packet.tet[r] >= 0 && f.layers->opacity[packet.iso[r]] < 1;
-    previous_t[r] = on ? packet.tmax[r] : kInf;
+    previous_t[r] = packet.tmax[r];
     previous_key[r] = packet.key[r];
-    packet.tmax[r] = on ? kInf : packet.tmax[r];
+    packet.tmax[r] = on ? kInf : -kInf;
     packet.key[r] = kNoHit;
     packet.tet[r] = -1;
     going += on;
@@ -297,13 +295,14 @@ template <int S, bool kStats, bool kClip>
 void peel_layers(const Frame& f, RayPacket<S>& packet, int x0, int y0, TraceStats& stats) {
   alignas(64) float previous_t[RayPacket<S>::kRays];
   alignas(64) std::uint32_t previous_key[RayPacket<S>::kRays];
-  const AfterLayerFilter<ClipHits<kClip>> after{ClipHits<kClip>(f.clip), previous_t, previous_key};
+  const AfterLayerNodeFilter<ClipNodes<kClip>> nodes{ClipNodes<kClip>(f.clip), previous_t};
+  const AfterLayerFilter<ClipHits<kClip>> hits{ClipHits<kClip>(f.clip), previous_t, previous_key};
   for (int layer = 0; layer + 1 < f.layers->max_layers; ++layer) {
     write_layer<S, kStats>(f, packet, x0, y0, layer, stats);
     const int going = next_layer(f, packet, previous_t, previous_key);
     if (going == 0) return;
     if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(going);
-    trace_rays<S, kStats, kClip>(f, packet, stats, after);
+    trace_rays<S, kStats>(f, packet, stats, nodes, hits);
   }
   write_layer<S, kStats>(f, packet, x0, y0, f.layers->max_layers - 1, stats);
 }
@@ -320,7 +319,7 @@ void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats
   }
   RayPacket<S> packet;
   setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, x0, y0);
-  trace_rays<S, kStats, kClip>(f, packet, stats, ClipHits<kClip>(f.clip));
+  trace_rays<S, kStats>(f, packet, stats, ClipNodes<kClip>(f.clip), ClipHits<kClip>(f.clip));
   if (f.layers) return peel_layers<S, kStats, kClip>(f, packet, x0, y0, stats);
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }

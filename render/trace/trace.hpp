@@ -121,8 +121,9 @@ void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, co
                   std::span<const IsoSurface> surfaces, const TraceOptions& options,
                   TraceStats* stats = nullptr);
 
-// The view depth of each pixel's nearest layer (+infinity without one) as trace_into computes a
-// hit's depth: layer l of every pixel when given, into `depth` (pixel_count values).
+// The view depth (docs/architecture.md §3) of layer `layer` of every pixel of `layers` (+infinity
+// where a pixel has fewer), from its ray distance along the pixel's direction in double, into
+// `depth` (pixel_count values): the depth shadow rays start from and the EXR carries.
 void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,
                        std::span<float> depth);
 
