@@ -1,5 +1,7 @@
 #include "render/trace/layer_shading.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include "render/trace/trace.hpp"
 
 namespace tetray::render {
@@ -17,8 +19,14 @@ void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> sh
   }
 }
 
+// resolve() pixel by pixel in parallel: a megapixel of layers takes a while to sort and blend.
 Framebuffer flatten_layers(FragmentImage& layers, const Camera& camera) {
-  Framebuffer image = resolve(layers);
+  Framebuffer image(layers.width, layers.height);
+  tbb::parallel_for(std::size_t{0}, layers.pixel_count(), [&](std::size_t p) {
+    const std::span<Fragment> pixel(layers.fragments.data() + layers.begin[p],
+                                    layers.fragments.data() + layers.begin[p + 1]);
+    merge_pixel(pixel, &image.rgba[4 * p], image.depth[p], image.hit[p]);
+  });
   layer_view_depths(layers, camera, 0, image.depth);
   return image;
 }
