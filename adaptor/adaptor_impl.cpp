@@ -13,8 +13,10 @@
 #include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/trace/layer_shading.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "scene_layers.hpp"
 #include "scene_shadows.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
@@ -429,11 +431,22 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     s.images.resize(s.views.size());
     s.trace_ms.resize(s.views.size());
     s.shadow_terms.resize(s.views.size());
+    const bool transparent = render::has_transparency(s.config.surfaces);
+    s.layers.resize(transparent ? s.views.size() : 0);
     for (std::size_t v = 0; v < s.views.size(); ++v) {
       const render::Stopwatch watch;
-      render::trace_into(s.images[v], volume.volume(), volume.bvh(), view_camera(s, k, v),
-                         s.config.surfaces, options, nullptr,
-                         shadows ? &s.shadow_terms[v] : nullptr);
+      const render::Camera camera = view_camera(s, k, v);
+      if (transparent) {
+        render::trace_layers(s.layers[v], volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                             options);
+        if (config_.output.per_rank_images && v == 0) {
+          render::FragmentImage mine = s.layers[0].color;
+          s.images[0] = render::flatten_layers(mine, camera);
+        }
+      } else {
+        render::trace_into(s.images[v], volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                           options, nullptr, shadows ? &s.shadow_terms[v] : nullptr);
+      }
       s.trace_ms[v] = watch.ms();
     }
   }
@@ -448,6 +461,7 @@ render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
   options.lights = s.config.shading.lights;
   if (s.config.lod_node_pixels > 0)
     options.lod = {s.config.lod_node_pixels, volumes_[s.volume].bvh().lod_planes};
+  options.max_layers = s.config.shading.max_layers;
   return options;
 }
 
@@ -537,6 +551,7 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
                                      Status& local_failure) {
   render::Framebuffer& image = s.images[v];
   const int writer = config_.output.writer_rank;
+  if (!s.layers.empty()) return composite_layered_view(s, k, v, r, local_failure);
   if (comm_.size > 1) {
     const render::Stopwatch watch;
     const int rc = s.config.volume
@@ -558,6 +573,23 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   if (st.code == StatusCode::mpi_error) return st;
   if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
   r.composite_ms += watch.ms();
+  return Status::success();
+}
+
+// A transparent scene's view: its layers composited onto the writer rank, with their shadows.
+Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::size_t v,
+                                             StepRecord& r, Status& local_failure) {
+  const render::Stopwatch watch;
+  const FieldVolume& volume = volumes_[s.volume];
+  const render::Camera camera = view_camera(s, k, v);
+  const render::TraceOptions options = trace_options(s);
+  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
+  Status st = composite_layers(s.layers[v], scene, comm_, config_.output.writer_rank, s.images[v]);
+  if (st.code == StatusCode::mpi_error) {
+    return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
+  }
+  if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
+  r.composite_ms = watch.ms();
   return Status::success();
 }
 

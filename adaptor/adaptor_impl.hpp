@@ -20,6 +20,7 @@
 #include "render/composite/global_reduce.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/colormap.hpp"
+#include "render/trace/trace.hpp"
 #include "step_record.hpp"
 #include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
@@ -63,6 +64,7 @@ class Adaptor::Impl {
     render::FragmentImage fragments;          // a volume scene's, before compositing
     // Per view, one term per shadowing light (scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
+    std::vector<render::LayerImage> layers;  // per view, a transparent scene's (scene_layers.hpp)
     StepRecord record;
   };
 
@@ -95,6 +97,8 @@ class Adaptor::Impl {
                         Status& local_failure);
   void submit_view(SceneState& s, std::size_t v, StepRecord r, const SceneCounters& sums,
                    std::uint64_t rss);
+  Status composite_layered_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
+                                Status& local_failure);
   render::TraceOptions trace_options(const SceneState& s) const;
   // Scene k's camera for view v (its orbit's, or the camera as given).
   render::Camera view_camera(const SceneState& s, std::size_t k, std::size_t v) const;

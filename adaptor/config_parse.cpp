@@ -282,10 +282,11 @@ bool valid_scene_name(const std::string& name) {
 
 Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
                   const Trigger& default_trigger) {
-  r.allow_keys(node, key,
-               {"name", "field", "isovalues", "colors", "color_by", "colormap", "color_range",
-                "camera", "image", "background", "lights", "trigger", "annotations", "orbit",
-                "volume", "shading", "clip", "lod", "camera_path"});
+  r.allow_keys(
+      node, key,
+      {"name",   "field",   "isovalues",  "colors", "color_by",    "colormap",    "color_range",
+       "camera", "image",   "background", "lights", "trigger",     "annotations", "orbit",
+       "volume", "shading", "clip",       "lod",    "camera_path", "opacity",     "max_layers"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -310,6 +311,7 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   if (node["lights"])
     parse_lights(r, node["lights"], child_key(key, "lights"), s.ambient, s.shading);
   parse_shading(r, node, key, s.shading);
+  parse_layers(r, node, key, s.surfaces, s.shading);
   if (node["annotations"]) {
     s.annotations = parse_annotations(r, node["annotations"], child_key(key, "annotations"), s);
   }

@@ -111,6 +111,22 @@ void parse_lights(const YamlReader& r, const YAML::Node& node, const std::string
   spec.lights.count = static_cast<int>(node.size());
 }
 
+void parse_layers(const YamlReader& r, const YAML::Node& scene, const std::string& key,
+                  std::vector<render::IsoSurface>& surfaces, ShadingSpec& spec) {
+  const std::string opacity_key = child_key(key, "opacity");
+  if (const YAML::Node opacity = scene["opacity"]) {
+    if (surfaces.empty()) r.fail(opacity, opacity_key, "needs isovalues (not a volume scene's)");
+    const auto values = r.numbers_in(opacity, opacity_key, 0, render::kMaxIsovalues, 0, 1);
+    if (values.size() != surfaces.size()) r.fail(opacity, opacity_key, "give one per isovalue");
+    for (std::size_t k = 0; k < values.size(); ++k)
+      surfaces[k].opacity = static_cast<float>(values[k]);
+  }
+  if (const YAML::Node layers = scene["max_layers"]) {
+    spec.max_layers =
+        static_cast<int>(r.integer_in(layers, child_key(key, "max_layers"), 1, render::kMaxLayers));
+  }
+}
+
 void parse_shading(const YamlReader& r, const YAML::Node& scene, const std::string& key,
                    ShadingSpec& spec) {
   if (const YAML::Node shading = scene["shading"]) {

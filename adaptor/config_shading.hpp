@@ -12,6 +12,7 @@ struct ShadingSpec {
   bool smooth = false;        // field-gradient normals interpolated at the hit; flat by default
   render::ClipRegion clip{};  // world coordinates; empty: nothing clipped
   render::Lights lights{};    // world coordinates; none: the headlight alone
+  int max_layers = 4;         // transparent layers per pixel (render::TraceOptions::max_layers)
 };
 
 }  // namespace tetray::config

@@ -13,12 +13,18 @@ std::vector<std::uint32_t> pixel_counts(const FragmentImage& image) {
   return counts;
 }
 
-// The root's merge: pixel by pixel, every rank's fragments of that pixel together.
-Framebuffer merge_ranks(const FragmentImage& shape, const std::vector<std::uint32_t>& counts,
-                        const std::vector<int>& offsets, const std::vector<Fragment>& all,
-                        int ranks) {
+// The root's merge: pixel by pixel, every rank's fragments of that pixel together, of which
+// the pixel keeps its nearest (kept_layers).
+FragmentImage merge_ranks(const FragmentImage& shape, const std::vector<std::uint32_t>& counts,
+                          const std::vector<int>& offsets, const std::vector<Fragment>& all,
+                          int ranks, std::size_t max_layers) {
   const std::size_t pixels = shape.pixel_count();
-  Framebuffer out(shape.width, shape.height);
+  FragmentImage out;
+  out.width = shape.width;
+  out.height = shape.height;
+  out.begin.reserve(pixels + 1);
+  out.begin.push_back(0);
+  out.fragments.reserve(all.size());
   std::vector<std::size_t> cursor(static_cast<std::size_t>(ranks));
   for (int r = 0; r < ranks; ++r) {
     cursor[static_cast<std::size_t>(r)] =
@@ -33,15 +39,18 @@ Framebuffer merge_ranks(const FragmentImage& shape, const std::vector<std::uint3
                     all.begin() + static_cast<std::ptrdiff_t>(cursor[r] + n));
       cursor[r] += n;
     }
-    merge_pixel(layers, &out.rgba[4 * p], out.depth[p], out.hit[p]);
+    const std::size_t kept = kept_layers(layers, max_layers);
+    out.fragments.insert(out.fragments.end(), layers.begin(),
+                         layers.begin() + static_cast<std::ptrdiff_t>(kept));
+    out.begin.push_back(static_cast<std::uint32_t>(out.fragments.size()));
   }
   return out;
 }
 
 }  // namespace
 
-int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Framebuffer& out,
-                        FragmentCompositeStats* stats) {
+int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::size_t max_layers,
+                     FragmentImage& merged, FragmentCompositeStats* stats) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -73,9 +82,19 @@ int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Fra
   rc = MPI_Gatherv(local.fragments.data(), static_cast<int>(my_bytes), MPI_BYTE, all.data(),
                    sizes.data(), offsets.data(), MPI_BYTE, root, comm);
   if (rc != MPI_SUCCESS || !is_root) return rc;
-  out = merge_ranks(local, counts, offsets, all, ranks);
+  merged = merge_ranks(local, counts, offsets, all, ranks, max_layers);
   if (stats != nullptr) *stats = {all.size(), total};
   return MPI_SUCCESS;
+}
+
+int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Framebuffer& out,
+                        FragmentCompositeStats* stats) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  FragmentImage merged;
+  const int rc = gather_fragments(local, comm, root, kAllLayers, merged, stats);
+  if (rc == MPI_SUCCESS && rank == root) out = resolve(merged);
+  return rc;
 }
 
 }  // namespace tetray::render

@@ -18,6 +18,13 @@ struct FragmentCompositeStats {
   std::uint64_t bytes_received = 0;
 };
 
+// Collective over `comm`: on `root`, `merged` becomes every pixel's kept fragments of all ranks
+// together (kept_layers: front to back, up to the first opaque one, at most max_layers);
+// elsewhere it is left alone. Returns MPI_SUCCESS or the MPI error code (MPI_ERR_COUNT when the
+// gathered fragments would not fit one MPI count).
+int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::size_t max_layers,
+                     FragmentImage& merged, FragmentCompositeStats* stats = nullptr);
+
 // Collective over `comm`: on `root`, `out` becomes the merged image of all ranks' fragments
 // (the same size on every rank); elsewhere it is left alone. Returns MPI_SUCCESS or the MPI
 // error code (MPI_ERR_COUNT when the gathered fragments would not fit one MPI count).

@@ -39,10 +39,27 @@ struct FragmentImage {
   }
 };
 
-// Front-to-back over of one pixel's fragments, in place order first (sorted by in_front_of).
-inline void merge_pixel(std::span<Fragment> layers, float rgba[4], float& depth,
-                        std::uint32_t& key) {
+// No cap on the layers a pixel keeps (volume runs).
+inline constexpr std::size_t kAllLayers = ~std::size_t{0};
+
+// Puts a pixel's fragments in order (in_front_of) and returns how many of them it keeps: its
+// nearest, up to and with the first opaque one (nothing behind it shows) and at most
+// max_layers (transparent surfaces, Wald et al. 2007, §8.5: the nearest layers of all ranks
+// together are those one rank tracing the whole mesh keeps).
+inline std::size_t kept_layers(std::span<Fragment> layers, std::size_t max_layers) {
   std::sort(layers.begin(), layers.end(), in_front_of);
+  const std::size_t count = std::min(layers.size(), max_layers);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (layers[k].rgba[3] >= 1) return k + 1;
+  }
+  return count;
+}
+
+// Front-to-back over of one pixel's kept fragments (kept_layers), with the nearest one's depth
+// and key.
+inline void merge_pixel(std::span<Fragment> layers, float rgba[4], float& depth, std::uint32_t& key,
+                        std::size_t max_layers = kAllLayers) {
+  layers = layers.first(kept_layers(layers, max_layers));
   double out[4] = {0, 0, 0, 0};
   for (const Fragment& f : layers) {
     const double through = 1.0 - out[3];

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/simd.hpp"
@@ -87,6 +88,11 @@ struct NoNodeFilter {
   NoNodeFilter() = default;
   explicit NoNodeFilter(const LocalClip&) {}
   static constexpr bool discards(const Bounds4&) { return false; }
+  // The distance below which rays r.. seek no hits, for their box tests: 0, the eye.
+  template <typename V>
+  static V ray_tmin(int, V) {
+    return V(0.0f);
+  }
 };
 struct NoHitFilter {
   static constexpr bool kKeepsAll = true;
@@ -94,15 +100,27 @@ struct NoHitFilter {
   explicit NoHitFilter(const LocalClip&) {}
 };
 
+// A hit filter with kKeepsAll false answers keeps(eye, t, dx, dy, dz, base, key): the lanes of
+// rays base.. (directions d, eye `eye`) whose hit at distance t on a primitive of tie key `key`
+// it keeps.
+
 // With a region: a node is skipped when discarded, a hit kept when its point is kept.
 struct ClipNodeFilter {
   explicit ClipNodeFilter(const LocalClip& region) : clip(&region) {}
   bool discards(const Bounds4& b) const { return clip->discards(b); }
+  template <typename V>
+  static V ray_tmin(int, V) {
+    return V(0.0f);
+  }
   const LocalClip* clip;
 };
 struct ClipHitFilter {
   static constexpr bool kKeepsAll = false;
   explicit ClipHitFilter(const LocalClip& region) : clip(&region) {}
+  template <typename F>
+  auto keeps(Vec3f eye, F t, F dx, F dy, F dz, int, std::uint32_t) const {
+    return clip->keeps(eye.x + t * dx, eye.y + t * dy, eye.z + t * dz);
+  }
   const LocalClip* clip;
 };
 

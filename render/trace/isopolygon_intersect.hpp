@@ -170,10 +170,8 @@ class IsopolygonIntersector {
     const F t = distance(s, dx, dy, dz);
     const F tmax = simd::load(packet_.tmax + base, F{});
     auto ahead = simd::both(inside, t > F(0.0f));
-    if constexpr (!HitFilter::kKeepsAll) {
-      const Vec3f e = packet_.eye;
-      ahead = simd::both(ahead, filter_.clip->keeps(e.x + t * dx, e.y + t * dy, e.z + t * dz));
-    }
+    if constexpr (!HitFilter::kKeepsAll)
+      ahead = simd::both(ahead, filter_.keeps(packet_.eye, t, dx, dy, dz, base, id.key));
     // Nearer than the hit so far, or exactly as near (a shared edge or vertex, or a surface seen
     // twice) with a smaller tie key.
     const auto tie_won =

@@ -8,10 +8,12 @@
 //   IV  else rays are tested in order until one hits; those before it become inactive for the
 //       subtree (first-active tracking).
 // Leaves get the same geometric test, then the leaf operation runs from the first active ray.
-// A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test;
-// the default one discards none and compiles to nothing. A level-of-detail policy
-// (level_of_detail.hpp) may stop the descent at an inner node, which then goes to the leaf
-// operation as it is; the default one never stops and compiles to nothing.
+// A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test,
+// and gives the distance from which each ray's box test starts (a transparent layer's rays
+// start at the previous layer, layer_filter.hpp); the default one discards none, starts at the
+// eye and compiles to nothing. A level-of-detail policy (level_of_detail.hpp) may stop the
+// descent at an inner node, which then goes to the leaf operation as it is; the default one
+// never stops and compiles to nothing.
 #pragma once
 
 #include <cstdint>
@@ -173,7 +175,8 @@ class PacketTraversal {
     const V ty0 = (b.lo[1] - e.y) * iy, ty1 = (b.hi[1] - e.y) * iy;
     const V tz0 = (b.lo[2] - e.z) * iz, tz1 = (b.hi[2] - e.z) * iz;
     using simd::vmax, simd::vmin;
-    const V near = vmax(vmax(vmin(tx0, tx1), vmin(ty0, ty1)), vmax(vmin(tz0, tz1), V(0.0f)));
+    const V near =
+        vmax(vmax(vmin(tx0, tx1), vmin(ty0, ty1)), vmax(vmin(tz0, tz1), filter_.ray_tmin(r, V{})));
     const V far = vmin(vmin(vmax(tx0, tx1), vmax(ty0, ty1)), vmax(tz0, tz1)) * kRobustFar;
     return near <= vmin(far, simd::load(packet_.tmax + r, V{}));
   }

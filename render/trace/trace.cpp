@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "render/trace/isopolygon_intersect.hpp"
+#include "render/trace/layer_filter.hpp"
 #include "render/trace/leaf_intersect.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/proxy_intersect.hpp"
@@ -74,6 +75,7 @@ struct Frame {
   std::vector<Framebuffer>* shadow_terms = nullptr;  // one per shadowing light, or null
   LevelOfDetail lod{};                               // used when enabled
   float footprint_per_distance = 0;                  // a pixel's width at unit distance
+  struct LayerSlots* layers = nullptr;  // trace_layers' output; null: trace_into's image
 };
 
 // One packet row's pixels, composed in the cache and then written to the frame in one go.
@@ -207,17 +209,22 @@ auto lod_policy(const Frame& f) {
   }
 }
 
+template <bool kClip>
+using ClipNodes = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
+template <bool kClip>
+using ClipHits = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
+
 // Traces the packet's rays through the one traversal, with the node and hit filters of the
-// scene's clip region (none without one) and its level of detail (exact without one): a node
-// the traversal stopped at, or a leaf narrow enough, gives its proxy surface instead of its tets.
-template <int S, bool kStats, bool kClip, bool kLod>
-void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats) {
-  using NodeFilter = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
-  using HitFilter = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
+// scene's clip region (none without one) or of a layer (layer_filter.hpp), and the scene's
+// level of detail (exact without one): a node the traversal stopped at, or a leaf narrow
+// enough, gives its proxy surface instead of its tets.
+template <int S, bool kStats, bool kLod, typename NodeFilter, typename HitFilter>
+void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats, NodeFilter node_filter,
+                HitFilter hit_filter) {
   const auto lod = lod_policy<kLod>(f);
   PacketTraversal<S, kStats, NodeFilter, decltype(lod)> traversal(f.bvh, f.isos, packet, stats,
-                                                                  NodeFilter(f.clip), lod);
-  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, HitFilter(f.clip));
+                                                                  node_filter, lod);
+  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
   traversal.run([&](const BvhNode& node, int first_active) {
     const std::uint32_t index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
     const bool proxy = !node.is_leaf() || lod.stops_at(index, node, packet.eye);
@@ -228,17 +235,112 @@ void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats) {
   });
 }
 
+// Depth peeling (trace_layers): each pixel's layers go to fixed slots, max_layers per pixel,
+// written by the packets in parallel and packed into the LayerImage afterwards.
+struct LayerSlots {
+  int max_layers = 0;
+  float opacity[kMaxIsovalues];                     // per sorted isovalue
+  std::vector<std::uint8_t> count;                  // layers per pixel
+  std::vector<Fragment> color;                      // pixel p's layer l at p * max_layers + l
+  std::vector<std::vector<Fragment>> shadow_terms;  // per shadowing light, the same layout
+};
+
+// Layer `layer` of the packet's rays that hit: shaded as write_pixels shades a hit, as
+// fragments of premultiplied color at the hit's distance.
+template <int S, bool kStats>
+void write_layer(const Frame& f, RayPacket<S>& packet, int x0, int y0, int layer,
+                 TraceStats& stats) {
+  constexpr int n = RayPacket<S>::kRays;
+  alignas(64) float light[n], depth[n];
+  alignas(64) float factor[kMaxLights][n];
+  float* factors[kMaxLights];
+  for (int k = 0; k < kMaxLights; ++k) factors[k] = factor[k];
+  const RayHits hits{packet.dx, packet.dy, packet.dz,   packet.nx,
+                     packet.ny, packet.nz, packet.tmax, n};
+  if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
+  light_and_depth(f.shade, hits, light, depth);
+  if (f.lit) light_terms(f.shade, f.lights, hits, packet.eye, light, factors);
+  LayerSlots& slots = *f.layers;
+  const auto fragment = [&](int r, float light_factor, Fragment& out) {
+    const float alpha = slots.opacity[packet.iso[r]];
+    out.depth_in = out.depth_out = packet.tmax[r];
+    out.key = packet.key[r];
+    shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r], packet.tet[r],
+                packet.iso[r], light_factor, out.rgba);
+    for (int c = 0; c < 3; ++c) out.rgba[c] *= alpha;
+    out.rgba[3] = alpha;
+  };
+  const int columns = std::min(S, f.camera.width - x0);
+  for (int row = 0; row < S && y0 + row < f.camera.height; ++row) {
+    if constexpr (kStats) stats.rays += layer == 0 ? static_cast<std::uint64_t>(columns) : 0;
+    for (int c = 0; c < columns; ++c) {
+      const int r = row * S + c;
+      if (packet.tet[r] < 0) continue;
+      if constexpr (kStats) ++stats.hits;
+      const std::size_t p = static_cast<std::size_t>(y0 + row) * f.camera.width + x0 + c;
+      const std::size_t slot = p * static_cast<std::size_t>(slots.max_layers) + layer;
+      slots.count[p] = static_cast<std::uint8_t>(layer + 1);
+      fragment(r, light[r], slots.color[slot]);
+      for (std::size_t j = 0; j < slots.shadow_terms.size(); ++j)
+        fragment(r, factor[j][r], slots.shadow_terms[j][slot]);
+    }
+  }
+}
+
+// Readies the packet for the layer after the one it holds: rays whose hit is transparent are
+// traced again with that hit as the bound to pass, the others (no hit, or an opaque one) hit
+// nothing more. Returns how many rays go on.
+template <int S>
+int next_layer(const Frame& f, RayPacket<S>& packet, float* previous_t,
+               std::uint32_t* previous_key) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  int going = 0;
+  for (int r = 0; r < RayPacket<S>::kRays; ++r) {
+    const bool on = packet.tet[r] >= 0 && f.layers->opacity[packet.iso[r]] < 1;
+    previous_t[r] = packet.tmax[r];
+    previous_key[r] = packet.key[r];
+    packet.tmax[r] = on ? kInf : -kInf;
+    packet.key[r] = kNoHit;
+    packet.tet[r] = -1;
+    going += on;
+  }
+  packet.tmax_bound = kInf;
+  packet.rays_without_hit = going;
+  return going;
+}
+
+// The packet's layers after its first hit: the same origin and frustum, the one traversal, and
+// a hit filter passing only hits after each ray's previous layer.
+template <int S, bool kStats, bool kClip, bool kLod>
+void peel_layers(const Frame& f, RayPacket<S>& packet, int x0, int y0, TraceStats& stats) {
+  alignas(64) float previous_t[RayPacket<S>::kRays];
+  alignas(64) std::uint32_t previous_key[RayPacket<S>::kRays];
+  const AfterLayerNodeFilter<ClipNodes<kClip>> nodes{ClipNodes<kClip>(f.clip), previous_t};
+  const AfterLayerFilter<ClipHits<kClip>> hits{ClipHits<kClip>(f.clip), previous_t, previous_key};
+  for (int layer = 0; layer + 1 < f.layers->max_layers; ++layer) {
+    write_layer<S, kStats>(f, packet, x0, y0, layer, stats);
+    const int going = next_layer(f, packet, previous_t, previous_key);
+    if (going == 0) return;
+    if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(going);
+    trace_rays<S, kStats, kLod>(f, packet, stats, nodes, hits);
+  }
+  write_layer<S, kStats>(f, packet, x0, y0, f.layers->max_layers - 1, stats);
+}
+
 template <int S, bool kStats, bool kClip, bool kLod>
 void trace_packet(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
   PacketFrustum frustum{};  // single rays use none
   if constexpr (S > 1) {
     frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
-    if (f.bvh.empty() || f.extent.empty() || frustum.misses_box(f.extent.lo, f.extent.hi))
+    if (f.bvh.empty() || f.extent.empty() || frustum.misses_box(f.extent.lo, f.extent.hi)) {
+      if (f.layers) return;  // no layers: the slots' counts are zero
       return write_background<S, kStats>(f, x0, y0, image, stats);
+    }
   }
   RayPacket<S> packet;
   setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, x0, y0);
-  trace_rays<S, kStats, kClip, kLod>(f, packet, stats);
+  trace_rays<S, kStats, kLod>(f, packet, stats, ClipNodes<kClip>(f.clip), ClipHits<kClip>(f.clip));
+  if (f.layers) return peel_layers<S, kStats, kClip, kLod>(f, packet, x0, y0, stats);
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
 
@@ -322,20 +424,14 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
   return image;
 }
 
-void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
-                std::span<const IsoSurface> surfaces, const TraceOptions& options,
-                TraceStats* stats, std::vector<Framebuffer>* shadow_terms) {
-  // A moved-from image keeps its sizes but not its storage.
-  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
-  if (image.width != camera.width || image.height != camera.height ||
-      image.pixel_count() != pixels || image.rgba.size() != 4 * pixels ||
-      image.hit.size() != pixels)
-    image = Framebuffer(camera.width, camera.height);
+namespace {
+
+// Sets up the frame of one trace and runs `run(f, clipped)` on it (the frame points into itself,
+// so it lives here).
+template <typename Run>
+void with_frame(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                std::span<const IsoSurface> surfaces, const TraceOptions& options, Run&& run) {
   const bool lit = !options.lights.headlight_only();
-  if (shadow_terms) {
-    shadow_terms->resize(lit ? static_cast<std::size_t>(options.lights.shadow_count()) : 0);
-    for (Framebuffer& term : *shadow_terms) term = Framebuffer(camera.width, camera.height);
-  }
   const CameraFrame view = make_frame(camera);
   Frame f{volume,
           bvh,
@@ -350,7 +446,7 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
           {},
           local_lights(options.lights, volume.origin),
           lit,
-          shadow_terms,
+          nullptr,
           options.lod,
           static_cast<float>(2 * view.scale_y / camera.height)};
   f.shade.surface_of_sorted = f.surface_of_sorted;
@@ -366,6 +462,11 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
     f.clip = LocalClip(options.clip, volume.origin, f.extent.magnitude);
     clip_extent(f.extent, f.clip, static_cast<Vec3f>(view.eye - volume.origin));
   }
+  run(f, clipped);
+}
+
+void trace_frame(const Frame& f, Framebuffer& image, bool clipped, const TraceOptions& options,
+                 TraceStats* stats) {
   if (stats) *stats = {};
   const bool collect = options.collect_stats && stats;
   switch (options.packet) {
@@ -382,6 +483,91 @@ void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, con
       trace_with<32>(f, image, clipped, collect, stats);
       break;
   }
+}
+
+// The slots' layers, pixel by pixel, as a fragment image.
+void pack(const LayerSlots& slots, const std::vector<Fragment>& from, FragmentImage& to, int width,
+          int height) {
+  to.width = width;
+  to.height = height;
+  const std::size_t pixels = to.pixel_count();
+  to.begin.resize(pixels + 1);
+  to.begin[0] = 0;
+  for (std::size_t p = 0; p < pixels; ++p) to.begin[p + 1] = to.begin[p] + slots.count[p];
+  to.fragments.resize(to.begin[pixels]);
+  const auto layers = static_cast<std::size_t>(slots.max_layers);
+  tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t p) {
+    std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(p * layers), slots.count[p],
+                to.fragments.begin() + to.begin[p]);
+  });
+}
+
+}  // namespace
+
+void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                TraceStats* stats, std::vector<Framebuffer>* shadow_terms) {
+  // A moved-from image keeps its sizes but not its storage.
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (image.width != camera.width || image.height != camera.height ||
+      image.pixel_count() != pixels || image.rgba.size() != 4 * pixels ||
+      image.hit.size() != pixels)
+    image = Framebuffer(camera.width, camera.height);
+  const bool lit = !options.lights.headlight_only();
+  if (shadow_terms) {
+    shadow_terms->resize(lit ? static_cast<std::size_t>(options.lights.shadow_count()) : 0);
+    for (Framebuffer& term : *shadow_terms) term = Framebuffer(camera.width, camera.height);
+  }
+  with_frame(volume, bvh, camera, surfaces, options, [&](Frame& f, bool clipped) {
+    f.shadow_terms = shadow_terms;
+    trace_frame(f, image, clipped, options, stats);
+  });
+}
+
+bool has_transparency(std::span<const IsoSurface> surfaces) {
+  return std::any_of(surfaces.begin(), surfaces.end(),
+                     [](const IsoSurface& s) { return s.opacity < 1; });
+}
+
+void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                  std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                  TraceStats* stats) {
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  LayerSlots slots;
+  slots.max_layers = std::clamp(options.max_layers, 1, kMaxLayers);
+  const std::size_t size = pixels * static_cast<std::size_t>(slots.max_layers);
+  slots.count.assign(pixels, 0);
+  slots.color.resize(size);
+  const int shadowing = options.lights.headlight_only() ? 0 : options.lights.shadow_count();
+  slots.shadow_terms.assign(static_cast<std::size_t>(shadowing), std::vector<Fragment>(size));
+  Framebuffer unused;  // the layers go to the slots
+  with_frame(volume, bvh, camera, surfaces, options, [&](Frame& f, bool clipped) {
+    for (int k = 0; k < f.isos.count; ++k)
+      slots.opacity[k] = surfaces[f.surface_of_sorted[k]].opacity;
+    f.layers = &slots;
+    trace_frame(f, unused, clipped, options, stats);
+  });
+  pack(slots, slots.color, image.color, camera.width, camera.height);
+  image.shadow_terms.resize(slots.shadow_terms.size());
+  for (std::size_t j = 0; j < slots.shadow_terms.size(); ++j)
+    pack(slots, slots.shadow_terms[j], image.shadow_terms[j], camera.width, camera.height);
+}
+
+void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,
+                       std::span<float> depth) {
+  const CameraFrame view = make_frame(camera);
+  tbb::parallel_for(0, camera.height, [&](int j) {
+    for (int i = 0; i < camera.width; ++i) {
+      const std::size_t p = static_cast<std::size_t>(j) * camera.width + i;
+      const std::span<const Fragment> pixel = layers.pixel(p);
+      if (static_cast<int>(pixel.size()) <= layer) {
+        depth[p] = std::numeric_limits<float>::infinity();
+        continue;
+      }
+      const Vec3d d = pixel_direction(view, camera, i, j);
+      depth[p] = static_cast<float>(pixel[layer].depth_in * dot(d, view.forward));
+    }
+  });
 }
 
 }  // namespace tetray::render

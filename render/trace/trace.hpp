@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/bvh/bvh.hpp"
+#include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/clip_region.hpp"
@@ -27,6 +28,7 @@ struct Rgb {
 struct IsoSurface {
   float value = 0;
   Rgb color{};
+  float opacity = 1;  // below 1: transparent, drawn by trace_layers
 };
 
 // Rays traced together (Wald et al. 2007, §3): single rays, or square packets. Every size gives
@@ -78,6 +80,8 @@ struct TraceOptions {
   // Where a BVH node is narrower than lod.node_pixels pixels, its proxy surface is drawn instead
   // of its tets (level_of_detail.hpp); off by default: exact images, and nothing of it runs.
   LevelOfDetail lod{};
+  // Transparent surfaces: the layers per pixel trace_layers peels at most (1..kMaxLayers).
+  int max_layers = 4;
 };
 
 // Traces every pixel of `camera` against `volume`/`bvh` for up to kMaxIsovalues isosurfaces
@@ -95,5 +99,36 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
 void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                 std::span<const IsoSurface> surfaces, const TraceOptions& options,
                 TraceStats* stats = nullptr, std::vector<Framebuffer>* shadow_terms = nullptr);
+
+// Transparency by depth peeling (Wald et al. 2007, §8.5; docs/architecture.md §7): a scene
+// with a surface of opacity below 1 is traced as layers per pixel. After the first hit, the
+// packet's rays that hit a transparent surface are traced again from the same origin, keeping
+// only hits strictly after the previous layer's (distance, key) (layer_filter.hpp), until an
+// opaque layer or options.max_layers. Each layer is shaded as trace_into shades a hit and
+// becomes a zero-length fragment of premultiplied color (alpha: its surface's opacity) at its
+// ray distance, the order peeling and the fragment merge share (so the layers this rank keeps
+// are its nearest in the merge's order too). A scene of opaque surfaces never runs this code.
+inline constexpr int kMaxLayers = 16;
+
+struct LayerImage {
+  FragmentImage color;  // per pixel its layers front to back; depths: distances along the ray
+  // Per shadowing light of options.lights, in order, with the same fragments' depths, keys and
+  // alphas: the part of each layer's color that light gives (premultiplied likewise).
+  std::vector<FragmentImage> shadow_terms;
+};
+
+// Whether any surface is transparent (opacity below 1).
+bool has_transparency(std::span<const IsoSurface> surfaces);
+
+// Traces every pixel's layers into `image` (its storage reused).
+void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
+                  std::span<const IsoSurface> surfaces, const TraceOptions& options,
+                  TraceStats* stats = nullptr);
+
+// The view depth (docs/architecture.md §3) of layer `layer` of every pixel of `layers` (+infinity
+// where a pixel has fewer), from its ray distance along the pixel's direction in double, into
+// `depth` (pixel_count values): the depth shadow rays start from and the EXR carries.
+void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,
+                       std::span<float> depth);
 
 }  // namespace tetray::render

@@ -128,6 +128,40 @@ ReferenceHit ReferenceIntersector::trace_ray(const ReferenceCamera& camera, Vec3
   return result;
 }
 
+ReferenceLayers ReferenceIntersector::trace_layers(const ReferenceCamera& camera,
+                                                   Vec3d direction) const {
+  const Ray ray{camera.eye() - origin_, direction};
+  ReferenceLayers result;
+  result.length_scale = std::max(length(ray.origin), extent_);
+  const double scale = result.length_scale;
+  const double pad = 2 * kGrazingDistance * scale;
+  const double t_max = length(ray.origin) + 2 * extent_ + pad;
+  for (const ReferenceTet& tet : tets_) {
+    if (!tet.reach(ray, pad)) continue;
+    for (std::size_t s = 0; s < isovalues_.size(); ++s) {
+      result.isopolygon_edge_distance =
+          std::min(result.isopolygon_edge_distance,
+                   tet.isopolygon_edge_distance(ray, t_max, isovalues_[s]) / scale);
+      const auto t = tet.intersect(ray, isovalues_[s]);
+      if (!t) continue;
+      if (clipped_) {
+        const Vec3d point = ray.origin + *t * ray.direction;
+        result.clip_boundary_distance =
+            std::min(result.clip_boundary_distance, clip_.boundary_distance(point) / scale);
+        if (!clip_.keeps(point)) continue;
+      }
+      result.layers.push_back({*t, static_cast<int>(s)});
+    }
+  }
+  std::sort(result.layers.begin(), result.layers.end(),
+            [](const auto& a, const auto& b) { return a.t < b.t; });
+  for (std::size_t k = 1; k < result.layers.size(); ++k) {
+    result.closest_layers =
+        std::min(result.closest_layers, (result.layers[k].t - result.layers[k - 1].t) / scale);
+  }
+  return result;
+}
+
 std::vector<ReferenceHit> ReferenceIntersector::trace_image(const render::Camera& camera) const {
   const ReferenceCamera rays(camera);
   std::vector<ReferenceHit> hits(static_cast<std::size_t>(camera.width) * camera.height);

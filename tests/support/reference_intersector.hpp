@@ -53,6 +53,23 @@ struct ReferenceShadow {
   double clip_boundary_distance = ReferenceHit::kNone;
 };
 
+// Every hit of a ray inside the clip region, nearest first: the layers of transparent surfaces
+// (Wald et al. 2007, §8.5), with how close the ray comes to deciding them by rounding.
+struct ReferenceLayers {
+  struct Layer {
+    double t = 0;
+    int surface = -1;  // index of the isovalue hit
+  };
+  std::vector<Layer> layers;
+  // Relative (to length_scale) distances over the whole ray: to the nearest isopolygon edge and
+  // of any hit from a clip plane; and between the two closest consecutive layers (their order
+  // is rounding below the renderer's precision).
+  double isopolygon_edge_distance = ReferenceHit::kNone;
+  double clip_boundary_distance = ReferenceHit::kNone;
+  double closest_layers = ReferenceHit::kNone;
+  double length_scale = 0;
+};
+
 // Copies the tets of `volume` to double precision with their caller ids.
 std::vector<ReferenceTet> reference_tets(const render::TetVolume& volume);
 
@@ -63,6 +80,7 @@ class ReferenceIntersector {
                        const render::ClipRegion& clip = {});
 
   ReferenceHit trace_ray(const ReferenceCamera& camera, Vec3d direction) const;
+  ReferenceLayers trace_layers(const ReferenceCamera& camera, Vec3d direction) const;
   // One ReferenceHit per pixel, row-major from the top-left (Framebuffer::index), computed in
   // parallel over rows.
   std::vector<ReferenceHit> trace_image(const render::Camera& camera) const;

@@ -71,6 +71,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["walk"] = walk_json(figures.walk);
   json["walk"]["vtk_volume"] = vtk_volume_json(figures.vtk_volume);
   json["shading"] = shading_json(figures.shading);
+  json["layers"] = layers_json(figures.layers);
   return json;
 }
 

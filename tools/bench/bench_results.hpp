@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_layers.hpp"
 #include "bench_shading.hpp"
 #include "bench_vtk_volume.hpp"
 #include "bench_walk.hpp"
@@ -75,6 +76,7 @@ struct SceneFigures {
   WalkFigures walk;
   VtkVolumeFigures vtk_volume;  // measured at the run's first size only
   ShadingFigures shading;
+  LayerFigures layers;
 
   const PacketFigures& packet(render::PacketSize size) const;
 };

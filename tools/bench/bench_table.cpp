@@ -85,6 +85,7 @@ void print_scene(const SceneFigures& s) {
   print_walk(s.walk);
   print_vtk_volume(s.vtk_volume);
   print_shading(s.shading);
+  print_layers(s.layers);
   print_targets(s);
   std::fflush(stdout);
 }

@@ -136,5 +136,66 @@ TEST(FragmentMerge, OrderOfArrivalDoesNotMatterAndTiesGoToTheSmallerKey) {
   }
 }
 
+// Rank r's surface layers of pixel p (transparent isosurfaces, zero length): depths from a few
+// values so that ties across ranks occur, keys unique over the ranks, some layers opaque.
+std::vector<Fragment> rank_layers(std::size_t p, int rank) {
+  std::mt19937 rng(static_cast<unsigned>(p * 131 + static_cast<std::size_t>(rank) * 7 + 1));
+  std::vector<Fragment> layers(std::uniform_int_distribution<std::size_t>(0, 6)(rng));
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    Fragment& f = layers[k];
+    f.depth_in = f.depth_out = static_cast<float>(std::uniform_int_distribution<int>(1, 8)(rng));
+    f.key = static_cast<std::uint32_t>(100 * rank + k);
+    const float alpha = std::uniform_int_distribution<int>(0, 9)(rng) == 0 ? 1.0f : 0.4f;
+    for (int c = 0; c < 3; ++c) f.rgba[c] = alpha * 0.1f * static_cast<float>(c + k);
+    f.rgba[3] = alpha;
+  }
+  return layers;
+}
+
+// What a rank hands to the compositor: its own nearest layers per pixel (as trace_layers peels).
+FragmentImage rank_image(int rank, std::size_t pixels, std::size_t max_layers) {
+  FragmentImage image;
+  image.width = static_cast<int>(pixels);
+  image.height = 1;
+  image.begin.push_back(0);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    std::vector<Fragment> layers = rank_layers(p, rank);
+    layers.resize(kept_layers(layers, max_layers));
+    image.fragments.insert(image.fragments.end(), layers.begin(), layers.end());
+    image.begin.push_back(static_cast<std::uint32_t>(image.fragments.size()));
+  }
+  return image;
+}
+
+// The merge keeps, of all ranks' layers of a pixel, the nearest max_layers in the tie order up
+// to the first opaque one: exactly the layers of one rank holding every surface.
+TEST(FragmentComposite, KeepsTheNearestLayersOfAllRanks) {
+  constexpr std::size_t kPixels = 500, kMaxLayers = 3;
+  const auto w = world();
+  FragmentImage merged;
+  ASSERT_EQ(gather_fragments(rank_image(w.rank, kPixels, kMaxLayers), MPI_COMM_WORLD, 0, kMaxLayers,
+                             merged),
+            MPI_SUCCESS);
+  if (w.rank != 0) return;
+  ASSERT_EQ(merged.pixel_count(), kPixels);
+  std::size_t capped = 0;
+  for (std::size_t p = 0; p < kPixels; ++p) {
+    std::vector<Fragment> all;
+    for (int r = 0; r < w.size; ++r) {
+      const std::vector<Fragment> layers = rank_layers(p, r);
+      all.insert(all.end(), layers.begin(), layers.end());
+    }
+    const std::size_t kept = kept_layers(all, kMaxLayers);
+    capped += kept < all.size();
+    const auto got = merged.pixel(p);
+    ASSERT_EQ(got.size(), kept) << "pixel " << p;
+    for (std::size_t k = 0; k < kept; ++k) {
+      EXPECT_EQ(got[k].depth_in, all[k].depth_in) << "pixel " << p << " layer " << k;
+      EXPECT_EQ(got[k].key, all[k].key) << "pixel " << p << " layer " << k;
+    }
+  }
+  EXPECT_GT(capped, kPixels / 4) << "the cap and the opaque cut must matter";
+}
+
 }  // namespace
 }  // namespace tetray::render

@@ -1,0 +1,26 @@
+// Transparent surfaces of one scene across ranks (Wald et al. 2007, §8.5, made exact for a split
+// mesh): every rank peels its nearest layers per pixel (render/trace/trace.hpp, trace_layers),
+// the fragment compositor gathers them onto the writer, which keeps each pixel's nearest
+// max_layers of all ranks together (render/composite/fragment_composite.hpp) — the layers one
+// rank tracing the whole mesh keeps. With shadowing lights, each kept layer's hit point is
+// shadowed as a first hit is (scene_shadows.hpp): the writer shares layer l's depths, every rank
+// traces their shadow rays against its tets, the occlusion is ORed onto the writer, which removes
+// each occluded light's part of that layer's color before blending.
+#pragma once
+
+#include "collective.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/trace.hpp"
+#include "scene_shadows.hpp"
+#include "tetray/adaptor.hpp"
+
+namespace tetray {
+
+// Collective over `comm`. `local` is this rank's layers (trace_layers with scene.options). On
+// return the writer's `image` is the blended image, with the first layer's view depth and key.
+// A rank whose shadow rays failed (memory) still takes part in every collective, with no
+// occlusion, and returns its error afterwards.
+Status composite_layers(const render::LayerImage& local, const ShadowScene& scene,
+                        const Communicator& comm, int writer, render::Framebuffer& image);
+
+}  // namespace tetray

@@ -1,0 +1,25 @@
+// The rank-local steps after depth peeling (trace.hpp, trace_layers) that turn a pixel's kept
+// layers into its color: each layer's shadows removed (its shadow terms, as apply_shadows does for
+// a first hit) and the layers blended front to back with the first layer's view depth. The
+// adaptor runs them on the writer after the fragment compositor (adaptor/scene_layers.hpp).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "render/core/fragments.hpp"
+#include "render/core/framebuffer.hpp"
+#include "render/trace/camera.hpp"
+
+namespace tetray::render {
+
+// Removes from layer `layer` of each pixel of `color` the part each occluded light gave
+// (bit j of occluded[p]: shadowing light j; shadow_terms[j] has the same fragments as `color`).
+void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> shadow_terms,
+                         int layer, std::span<const std::uint8_t> occluded);
+
+// The blended image of the layers (sorted and kept as the fragment merge keeps them), with the
+// first layer's view depth and key.
+Framebuffer flatten_layers(FragmentImage& layers, const Camera& camera);
+
+}  // namespace tetray::render

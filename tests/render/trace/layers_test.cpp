@@ -1,0 +1,156 @@
+// Transparency by depth peeling (Wald et al. 2007, §8.5) against the double-precision reference:
+// each pixel's layers are the reference's hits along its ray in order (within the clip region),
+// up to and with the first opaque one and at most max_layers, at the same distances and on the
+// same surfaces, except for rays within 1e-6 of an isopolygon edge, near a clip plane or through
+// two hits closer than the depth tolerance (whose order is rounding). Every packet size peels
+// the same layers bitwise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "support/reference_comparison.hpp"
+#include "support/render_fixtures.hpp"
+
+namespace tetray::test {
+namespace {
+
+const int kSide = scaled_side(48);
+
+struct LayerCounts {
+  std::size_t compared = 0, exempt = 0, layers = 0, peeled_beyond_first = 0;
+  std::size_t count_mismatches = 0, depth_mismatches = 0, surface_mismatches = 0;
+};
+
+// The surface a fragment lies on, told by its alpha (every surface has its own opacity).
+int surface_of(const render::Fragment& f, std::span<const render::IsoSurface> surfaces) {
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    if (f.rgba[3] == surfaces[s].opacity) return static_cast<int>(s);
+  }
+  return -1;
+}
+
+// The reference's layers a pixel must show: up to and with the first opaque one, at most max.
+std::size_t expected_count(const ReferenceLayers& ref, std::span<const render::IsoSurface> surfaces,
+                           int max_layers) {
+  std::size_t count = 0;
+  for (const ReferenceLayers::Layer& layer : ref.layers) {
+    if (count == static_cast<std::size_t>(max_layers)) break;
+    ++count;
+    if (surfaces[static_cast<std::size_t>(layer.surface)].opacity >= 1) break;
+  }
+  return count;
+}
+
+LayerCounts compare_layers(const render::LayerImage& image, const ReferenceIntersector& reference,
+                           const render::Camera& camera,
+                           std::span<const render::IsoSurface> surfaces, int max_layers,
+                           const std::string& label) {
+  const ReferenceCamera rays(camera);
+  LayerCounts counts;
+  for (int j = 0; j < camera.height; ++j)
+    for (int i = 0; i < camera.width; ++i) {
+      const ReferenceLayers ref = reference.trace_layers(rays, rays.pixel_direction(i, j));
+      if (ref.isopolygon_edge_distance < kGrazingDistance ||
+          ref.clip_boundary_distance < kClipBoundaryDistance ||
+          ref.closest_layers < kDepthTolerance) {
+        ++counts.exempt;
+        continue;
+      }
+      ++counts.compared;
+      const auto pixel = image.color.pixel(static_cast<std::size_t>(j) * camera.width + i);
+      const std::size_t expected = expected_count(ref, surfaces, max_layers);
+      counts.layers += pixel.size();
+      counts.peeled_beyond_first += pixel.size() > 1;
+      if (pixel.size() != expected) {
+        if (++counts.count_mismatches <= 5)
+          ADD_FAILURE() << label << " pixel (" << i << ", " << j << "): " << pixel.size()
+                        << " layers, the reference " << expected;
+        continue;
+      }
+      for (std::size_t l = 0; l < expected; ++l) {
+        const double t = ref.layers[l].t;
+        if (std::abs(pixel[l].depth_in - t) > kDepthTolerance * ref.length_scale &&
+            ++counts.depth_mismatches <= 5)
+          ADD_FAILURE() << label << " pixel (" << i << ", " << j << ") layer " << l << ": t "
+                        << pixel[l].depth_in << ", the reference " << t;
+        if (surface_of(pixel[l], surfaces) != ref.layers[l].surface &&
+            ++counts.surface_mismatches <= 5)
+          ADD_FAILURE() << label << " pixel (" << i << ", " << j << ") layer " << l << ": surface "
+                        << surface_of(pixel[l], surfaces) << ", the reference "
+                        << ref.layers[l].surface;
+      }
+    }
+  return counts;
+}
+
+bool same_fragments(const render::FragmentImage& a, const render::FragmentImage& b) {
+  if (a.begin != b.begin || a.fragments.size() != b.fragments.size()) return false;
+  for (std::size_t k = 0; k < a.fragments.size(); ++k) {
+    const render::Fragment &x = a.fragments[k], &y = b.fragments[k];
+    if (x.depth_in != y.depth_in || x.depth_out != y.depth_out || x.key != y.key) return false;
+    for (int c = 0; c < 4; ++c) {
+      if (x.rgba[c] != y.rgba[c]) return false;
+    }
+  }
+  return true;
+}
+
+void expect_layers_agree(std::span<const double> isovalues, std::span<const float> opacity,
+                         int max_layers, const render::ClipRegion& clip, const std::string& label) {
+  const GyroidTwist data = gyroid(8);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
+  for (std::size_t s = 0; s < surfaces.size(); ++s) surfaces[s].opacity = opacity[s];
+  const ReferenceIntersector reference(scene.volume, isovalues_of(surfaces), clip);
+  render::TraceOptions options;
+  options.max_layers = max_layers;
+  options.clip = clip;
+  int index = 0;
+  std::size_t compared = 0, peeled = 0;
+  for (const render::Camera& camera : standard_cameras(kSide, kSide)) {
+    const std::string name = label + " camera " + std::to_string(index++);
+    render::LayerImage image;
+    render::trace_layers(image, scene.volume, scene.bvh, camera, surfaces, options);
+    const LayerCounts counts = compare_layers(image, reference, camera, surfaces, max_layers, name);
+    std::cout << "[ layers ] " << name << ": " << counts.compared << " pixels compared ("
+              << counts.exempt << " exempt), " << counts.layers << " layers, "
+              << counts.peeled_beyond_first << " pixels with more than one\n";
+    EXPECT_EQ(counts.count_mismatches + counts.depth_mismatches + counts.surface_mismatches, 0u)
+        << name;
+    compared += counts.compared;
+    peeled += counts.peeled_beyond_first;
+    EXPECT_LT(counts.exempt, counts.compared / 5) << name << ": too many pixels exempt";
+    for (const render::PacketSize packet : render::kPacketSizes) {
+      options.packet = packet;
+      render::LayerImage again;
+      render::trace_layers(again, scene.volume, scene.bvh, camera, surfaces, options);
+      EXPECT_TRUE(same_fragments(image.color, again.color))
+          << name << " packet " << render::to_string(packet);
+    }
+    options.packet = render::PacketSize::p32x32;
+  }
+  EXPECT_GT(peeled, compared / 10) << label << ": too few pixels with more than one layer";
+}
+
+TEST(Layers, TransparentSurfacesAgreeWithTheReference) {
+  const double isovalues[] = {-0.5, 0.0, 0.5};
+  const float opacity[] = {0.3f, 0.5f, 0.7f};
+  expect_layers_agree(isovalues, opacity, render::kMaxLayers, {}, "transparent");
+}
+
+// Peeling stops at an opaque layer and at max_layers, and layers are clipped like first hits.
+TEST(Layers, StopAtAnOpaqueLayerAndAtMaxLayersWithClipping) {
+  const double isovalues[] = {-0.5, 0.0, 0.5};
+  const float opacity[] = {0.3f, 1.0f, 0.7f};
+  render::ClipRegion clip;
+  clip.has_box = true;
+  clip.box_lo = {-1.2, -1.2, -1.2};
+  clip.box_hi = {0.05, 1.2, 1.2};
+  expect_layers_agree(isovalues, opacity, 3, clip, "opaque and clipped");
+}
+
+}  // namespace
+}  // namespace tetray::test

@@ -1,0 +1,109 @@
+#include "bench_layers.hpp"
+
+#include <array>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+#include "bench_scene.hpp"
+#include "bench_timing.hpp"
+#include "render/trace/layer_shading.hpp"
+#include "render/trace/shadow_rays.hpp"
+#include "tools/bench_common/json_file.hpp"
+
+namespace tetray::bench {
+namespace {
+
+// The bench surface and a second one beside it, both half transparent.
+std::array<render::IsoSurface, 2> transparent_surfaces() {
+  render::IsoSurface near = bench_surface(), far = bench_surface();
+  far.value = near.value + 0.5f;
+  far.color = {0.35f, 0.55f, 0.9f};
+  near.opacity = far.opacity = 0.5f;
+  return {near, far};
+}
+
+render::TraceOptions all_modalities() {
+  render::TraceOptions options;
+  options.lights.count = 2;
+  options.lights.light[0] = {render::LightKind::headlight, {}, false};
+  options.lights.light[1] = {render::LightKind::point, {3.0, 4.0, 2.0}, true};
+  options.clip.has_box = true;
+  options.clip.box_lo = {-2, -2, -2};
+  options.clip.box_hi = {0, 2, 2};
+  return options;
+}
+
+// One rank's frame of a transparent scene: the layers, each layer's shadows, the blend.
+void layered_frame(const render::TetVolume& volume, const render::Bvh& bvh,
+                   const render::Camera& camera, std::span<const render::IsoSurface> surfaces,
+                   const render::TraceOptions& options, render::LayerImage& layers,
+                   render::Framebuffer& image) {
+  render::trace_layers(layers, volume, bvh, camera, surfaces, options);
+  std::vector<float> depth(layers.color.pixel_count());
+  for (int layer = 0; !layers.shadow_terms.empty() && layer < options.max_layers; ++layer) {
+    render::layer_view_depths(layers.color, camera, layer, depth);
+    const std::vector<std::uint8_t> occluded =
+        render::trace_shadow_rays(volume, bvh, camera, surfaces, options, depth);
+    render::apply_layer_shadows(layers.color, layers.shadow_terms, layer, occluded);
+  }
+  image = render::flatten_layers(layers.color, camera);
+}
+
+double per_ray(const render::LayerImage& layers) {
+  return static_cast<double>(layers.color.fragments.size()) /
+         static_cast<double>(layers.color.pixel_count());
+}
+
+}  // namespace
+
+LayerFigures measure_layers(const GyroidTwist& scene, const render::Camera& camera) {
+  render::TetVolume volume;
+  render::Bvh bvh;
+  load_scene(scene, volume, bvh);
+  const render::IsoSurface surface = bench_surface();
+  const std::array<render::IsoSurface, 2> transparent = transparent_surfaces();
+  render::Framebuffer image;
+  render::LayerImage layers;
+  const render::TraceOptions plain{}, all = all_modalities();
+  const auto plain_frame = [&] {
+    return time_ms([&] { render::trace_into(image, volume, bvh, camera, {&surface, 1}, plain); });
+  };
+  const auto layered = [&](const render::TraceOptions& options) {
+    return [&, options] {
+      return time_ms(
+          [&] { layered_frame(volume, bvh, camera, transparent, options, layers, image); });
+    };
+  };
+  plain_frame();  // warm-up
+  const std::array<double, 3> best = best_in_turn_ms<3>(
+      kRepetitions, {std::function<double()>(plain_frame), layered(plain), layered(all)});
+  LayerFigures figures{best[0], best[1], best[2], 0, 0};
+  layered(plain)();
+  figures.layers_per_ray = per_ray(layers);
+  layered(all)();
+  figures.all_layers_per_ray = per_ray(layers);
+  return figures;
+}
+
+void print_layers(const LayerFigures& f) {
+  std::printf(
+      "  transparency   two surfaces at 4 layers %.1f ms (%.2fx, %.2f layers per ray); with a "
+      "shadowing point light and the half clip box %.1f ms (%.2fx, %.2f layers per ray)\n",
+      f.transparent_ms, f.transparent_ms / f.plain_ms, f.layers_per_ray, f.all_ms,
+      f.all_ms / f.plain_ms, f.all_layers_per_ray);
+}
+
+Json::Value layers_json(const LayerFigures& f) {
+  Json::Value json;
+  json["plain_ms"] = number(f.plain_ms);
+  json["transparent_ms"] = number(f.transparent_ms);
+  json["transparent_ratio"] = number(f.transparent_ms / f.plain_ms);
+  json["transparent_layers_per_ray"] = number(f.layers_per_ray);
+  json["all_modalities_ms"] = number(f.all_ms);
+  json["all_modalities_ratio"] = number(f.all_ms / f.plain_ms);
+  json["all_modalities_layers_per_ray"] = number(f.all_layers_per_ray);
+  return json;
+}
+
+}  // namespace tetray::bench
