@@ -64,6 +64,10 @@ class Adaptor::Impl {
     // Per view, one term per shadowing light (scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
     StepRecord record;
+    // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.
+    const render::Colormap* cap_colormap = nullptr;
+    render::ValueRange cap_range;  // of the cap's colormap, this step
+    std::vector<float> cap_field;  // per vertex of the scene's volume
   };
 
   static constexpr std::size_t kAnyVolume = ~std::size_t{0};
@@ -96,6 +100,8 @@ class Adaptor::Impl {
   void submit_view(SceneState& s, std::size_t v, StepRecord r, const SceneCounters& sums,
                    std::uint64_t rss);
   render::TraceOptions trace_options(const SceneState& s) const;
+  void load_cap(SceneState& s, const render::ValueRange& global,
+                std::span<const FieldView> fields) const;
   // Scene k's camera for view v (its orbit's, or the camera as given).
   render::Camera view_camera(const SceneState& s, std::size_t k, std::size_t v) const;
 
