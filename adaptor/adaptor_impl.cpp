@@ -408,9 +408,11 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     FieldVolume& volume = volumes_[s.volume];
     if (s.config.volume) {
       const render::Stopwatch watch;
-      s.fragments = render::render_volume(
-          volume.volume(), walks_[s.volume].get(volume.volume()), camera_for(s, ranges_.scenes[k]),
-          volume_options(*s.config.volume, ranges_.scenes[k].color));
+      const render::VolumeRenderOptions options =
+          volume_options(*s.config.volume, ranges_.scenes[k].color);
+      s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
+      s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
+                                          camera_for(s, ranges_.scenes[k]), options);
       s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
       s.trace_ms.assign(1, watch.ms());
       continue;
@@ -582,6 +584,21 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   return Status::success();
 }
 
+// What the scene colored through a colormap this step, for its colorbars: the surfaces' color
+// field or the volume's transfer function, then the cap.
+std::vector<ColorScale> Adaptor::Impl::color_scales(const SceneState& s) const {
+  std::vector<ColorScale> scales;
+  if (s.colormap != nullptr)
+    scales.push_back({s.config.color_by, s.colormap, s.color_range.lo, s.color_range.hi});
+  if (s.config.volume) {
+    scales.push_back({s.config.field, render::find_colormap(s.config.volume->colormap_name),
+                      s.color_range.lo, s.color_range.hi});
+  }
+  if (s.cap_colormap != nullptr)
+    scales.push_back({s.config.shading.cap.field, s.cap_colormap, s.cap_range.lo, s.cap_range.hi});
+  return scales;
+}
+
 // On the writer rank: the view's image and log row to the writer thread.
 void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
                                 const SceneCounters& sums, std::uint64_t rss) {
@@ -596,8 +613,7 @@ void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
   job.image = std::move(image);
   std::copy(std::begin(s.config.background), std::end(s.config.background), job.background);
   job.record = r;
-  job.annotations = annotations_for(s.config, r, s.colormap, static_cast<float>(s.color_range.lo),
-                                    static_cast<float>(s.color_range.hi));
+  job.annotations = annotations_for(s.config, r, color_scales(s));
   // The viewer page goes with the run's first image, not at create: creating writes only what
   // must exist before any step (folders, table headers), so a nearly full disk fails at an image.
   if (!viewer_page_sent_ && config_.output.cinema) {

@@ -11,6 +11,7 @@
 
 #include "cell_tets.hpp"
 
+#include "annotations.hpp"
 #include "camera_path.hpp"
 #include "collective.hpp"
 #include "config.hpp"
@@ -56,7 +57,8 @@ class Adaptor::Impl {
     const render::Colormap* colormap = nullptr;  // null without color_by
     bool due = false;                            // this step; cleared when the scene is skipped
     bool skipped_last = false;                // at its last due step: its inputs are checked again
-    render::ValueRange color_range;           // of the colormap, this step
+    render::ValueRange color_range;           // of the colormap (a volume scene: its transfer
+                                              // function's), this step
     std::vector<View> views;                  // one without an orbit
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
@@ -100,6 +102,7 @@ class Adaptor::Impl {
   void submit_view(SceneState& s, std::size_t v, StepRecord r, const SceneCounters& sums,
                    std::uint64_t rss);
   render::TraceOptions trace_options(const SceneState& s) const;
+  std::vector<ColorScale> color_scales(const SceneState& s) const;
   void load_cap(SceneState& s, const render::ValueRange& global,
                 std::span<const FieldView> fields) const;
   // Scene k's camera for view v (its orbit's, or the camera as given).
