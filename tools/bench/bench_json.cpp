@@ -68,6 +68,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["refit"] = refit(figures.refit);
   json["walk"] = walk_json(figures.walk);
   json["shading"] = shading_json(figures.shading);
+  json["cap"] = cap_json(figures.cap);
   return json;
 }
 

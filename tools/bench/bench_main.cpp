@@ -62,6 +62,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
       measure_refit(scene, camera, {options.steps, options.threads, figures.ref.embree_packets});
   figures.walk = measure_walk(scene, camera);
   figures.shading = measure_shading(scene, camera);
+  figures.cap = measure_cap(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   return figures;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cap.hpp"
 #include "bench_shading.hpp"
 #include "bench_walk.hpp"
 #include "render/trace/trace.hpp"
@@ -71,6 +72,7 @@ struct SceneFigures {
   RefitFigures refit;
   WalkFigures walk;
   ShadingFigures shading;
+  CapFigures cap;
 
   const PacketFigures& packet(render::PacketSize size) const;
 };

@@ -82,6 +82,7 @@ void print_scene(const SceneFigures& s) {
   print_refit(s.refit);
   print_walk(s.walk);
   print_shading(s.shading);
+  print_cap(s.cap);
   print_targets(s);
   std::fflush(stdout);
 }
