@@ -72,14 +72,21 @@ struct CapFrame {
 };
 
 // Collects the row's rays whose entry point into the region lies in one of this rank's tets.
+// Neighbouring pixels' points mostly share a tet: the last one found is tried first, which
+// gives locate_point's answer whenever the point is strictly inside it.
 void find_cap_hits(const CapFrame& f, int j, CapRow& row) {
+  std::optional<std::uint32_t> last;
   for (int i = 0; i < f.camera.width; ++i) {
     const Vec3d d = pixel_direction(f.view, f.camera, i, j);
     const std::optional<RegionEntry> entry =
         enter_region(f.options.clip, f.volume.origin, f.eye, d);
     if (!entry) continue;
-    const std::optional<PointLocation> at = locate_point(f.volume, f.bvh, f.eye + entry->t * d);
+    const Vec3d point = f.eye + entry->t * d;
+    std::optional<PointLocation> at;
+    if (last) at = locate_strictly_inside(f.volume, *last, point);
+    if (!at) at = locate_point(f.volume, f.bvh, point);
     if (!at) continue;
+    last = at->tet;
     row.column.push_back(i);
     row.key.push_back(f.volume.tet_ids[at->tet]);
     row.value.push_back(static_cast<float>(field_at(f.volume, f.cap, *at)));
