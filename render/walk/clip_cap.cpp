@@ -39,7 +39,8 @@ int half_spaces(const ClipRegion& region, Vec3d origin, HalfSpace* out) {
 
 // The cap hits of one image row, structure of arrays as shade.hpp's RayHits reads them.
 struct CapRow {
-  std::vector<float> dx, dy, dz, nx, ny, nz, t, light, depth, value;
+  std::vector<float> dx, dy, dz, nx, ny, nz, t, value;
+  std::vector<float> light, depth;  // sized by draw_row, once the row's hits are known
   std::vector<int> column;
   std::vector<std::uint32_t> key;
 
@@ -119,6 +120,8 @@ void draw_row(const CapFrame& f, const ShadeContext& shade, const LocalLights* l
               CapRow& row, Framebuffer& image, std::vector<Framebuffer>* shadow_terms) {
   const RayHits hits = row.hits();
   if (hits.count == 0) return;
+  row.light.resize(row.t.size());
+  row.depth.resize(row.t.size());
   light_and_depth(shade, hits, row.light.data(), row.depth.data());
   std::vector<std::vector<float>> factor;
   if (lights) {
