@@ -2,7 +2,7 @@
 // plane, capped with a second field, rendered by rank 0 alone and by all ranks with the tets
 // split into slabs, gives the same PNG bit for bit (global tet ids given: the cap pixel's key is
 // its tet's, so the tie rule of docs/architecture.md §3 picks the same winner on any split), and
-// the cap is there: the image differs from the uncapped one.
+// the cap is there: the image differs from the uncapped one. A missing cap field skips the scene.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -107,6 +107,23 @@ TEST(CapAcrossRanks, GivesTheImageOfOneRank) {
   ASSERT_EQ(one.rgba.size(), split.rgba.size());
   EXPECT_EQ(differing_pixels(one, split), 0u);
   EXPECT_GT(differing_pixels(one, uncapped), one.rgba.size() / 4 / 10) << "the cap must show";
+}
+
+// A cap field the solver does not pass skips the scene (on every rank), naming the field.
+TEST(CapAcrossRanks, AMissingCapFieldSkipsTheScene) {
+  const SharedDir shared("cap_missing_field");
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, config(shared.path(), true), status);
+  ASSERT_TRUE(adaptor) << status.message;
+  const Slab part = slab(rank(), world_size());
+  const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)),
+                      TetsView::of(std::span<const std::int64_t>(part.tets))};
+  const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().gyroid.field))};
+  status = adaptor->execute(0, 0, mesh, fields);
+  EXPECT_EQ(status.code, StatusCode::partial) << status.message;
+  EXPECT_NE(status.message.find("'temperature'"), std::string::npos) << status.message;
+  EXPECT_NE(status.message.find("'cut'"), std::string::npos) << status.message;
+  EXPECT_TRUE(adaptor->finalize().ok());
 }
 
 }  // namespace
