@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 #include "bench_scene.hpp"
