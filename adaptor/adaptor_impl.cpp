@@ -16,6 +16,7 @@
 #include "render/trace/layer_shading.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
+#include "render/walk/clip_cap.hpp"
 #include "scene_layers.hpp"
 #include "scene_shadows.hpp"
 #include "thread_budget.hpp"
@@ -58,6 +59,8 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
     state.volume = static_cast<std::size_t>(found - volumes_.begin());
     if (found == volumes_.end()) volumes_.emplace_back(s.field);
     if (!s.color_by.empty()) state.colormap = render::find_colormap(s.colormap_name);
+    if (!s.shading.cap.field.empty())
+      state.cap_colormap = render::find_colormap(s.shading.cap.colormap_name);
     scenes_.push_back(std::move(state));
   }
   skipped_.assign(volumes_.size(), 0);
@@ -235,7 +238,8 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
 Status Adaptor::Impl::check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields) {
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const SceneState& s = scenes_[k];
-    for (const std::string* name : {&s.config.field, &s.config.color_by}) {
+    for (const std::string* name :
+         {&s.config.field, &s.config.color_by, &s.config.shading.cap.field}) {
       if (!s.due || name->empty()) continue;
       std::string e = missing_field(fields, *name, s.config.name, mesh.tets.count);
       if (!e.empty()) {
@@ -329,14 +333,16 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
       skip(k, volume_check.message);
       continue;
     }
-    if (s.config.color_by.empty() || s.config.color_by == volume.field()) continue;
-    const Status color_check = check(s.config.color_by, color_keep_);
-    if (color_check.failed()) return color_check;
-    if (!color_check.ok()) {
-      skip(k, color_check.message);
-      continue;
+    for (const std::string* colored : {&s.config.color_by, &s.config.shading.cap.field}) {
+      if (colored->empty() || *colored == volume.field()) continue;
+      const Status color_check = check(*colored, color_keep_);
+      if (color_check.failed()) return color_check;
+      if (!color_check.ok()) {
+        skip(k, color_check.message);
+        break;
+      }
+      for (std::size_t t = 0; t < color_keep_.size(); ++t) volume.keep()[t] &= color_keep_[t];
     }
-    for (std::size_t t = 0; t < color_keep_.size(); ++t) volume.keep()[t] &= color_keep_[t];
   }
   if (first_due_scene(v) == nullptr) return Status::success();
   const bool skipping = config_.nonfinite == render::NonFinitePolicy::skip_tets;
@@ -394,6 +400,8 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
       ranges.color = local_field_range(field_or_empty(fields, colored));
       s.record.color_ms += watch.ms();
     }
+    if (s.cap_colormap != nullptr && s.config.shading.cap.range.automatic)
+      ranges.cap = local_field_range(field_or_empty(fields, s.config.shading.cap.field));
   }
   return Status::success();
 }
@@ -405,9 +413,11 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     FieldVolume& volume = volumes_[s.volume];
     if (s.config.volume) {
       const render::Stopwatch watch;
-      s.fragments = render::render_volume(
-          volume.volume(), walks_[s.volume].get(volume.volume()), camera_for(s, ranges_.scenes[k]),
-          volume_options(*s.config.volume, ranges_.scenes[k].color));
+      const render::VolumeRenderOptions options =
+          volume_options(*s.config.volume, ranges_.scenes[k].color);
+      s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
+      s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
+                                          camera_for(s, ranges_.scenes[k]), options);
       s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
       s.trace_ms.assign(1, watch.ms());
       continue;
@@ -426,6 +436,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
       options.color_by = {s.colormap, static_cast<float>(range.lo), static_cast<float>(range.hi)};
       s.record.color_ms += watch.ms();
     }
+    if (s.cap_colormap != nullptr) load_cap(s, ranges_.scenes[k].cap, fields);
     // Every view from the one BVH of the step: only the camera changes.
     const bool shadows = options.lights.shadow_count() > 0;
     s.images.resize(s.views.size());
@@ -444,13 +455,32 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
           s.images[0] = render::flatten_layers(mine, camera);
         }
       } else {
+        std::vector<render::Framebuffer>* terms = shadows ? &s.shadow_terms[v] : nullptr;
         render::trace_into(s.images[v], volume.volume(), volume.bvh(), camera, s.config.surfaces,
-                           options, nullptr, shadows ? &s.shadow_terms[v] : nullptr);
+                           options, nullptr, terms);
+        if (s.cap_colormap != nullptr) {
+          const render::ClipCap cap{s.cap_colormap, static_cast<float>(s.cap_range.lo),
+                                    static_cast<float>(s.cap_range.hi), s.cap_field};
+          render::draw_clip_cap(s.images[v], volume.volume(), volume.bvh(), camera, options, cap,
+                                terms);
+        }
       }
       s.trace_ms[v] = watch.ms();
     }
   }
   return Status::success();
+}
+
+// The cap's field in the vertex store's order and its colormap range for this step.
+void Adaptor::Impl::load_cap(SceneState& s, const render::ValueRange& global,
+                             std::span<const FieldView> fields) const {
+  const render::Stopwatch watch;
+  const config::CapSpec& spec = s.config.shading.cap;
+  render::load_vertex_field(volumes_[s.volume].volume(),
+                            field_source(field_or_empty(fields, spec.field)), s.cap_field);
+  s.cap_range = spec.range.automatic ? global : render::ValueRange{spec.range.lo, spec.range.hi};
+  usable_color_range(s.cap_range);
+  s.record.color_ms += watch.ms();
 }
 
 render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
@@ -593,6 +623,21 @@ Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::
   return Status::success();
 }
 
+// What the scene colored through a colormap this step, for its colorbars: the surfaces' color
+// field or the volume's transfer function, then the cap.
+std::vector<ColorScale> Adaptor::Impl::color_scales(const SceneState& s) const {
+  std::vector<ColorScale> scales;
+  if (s.colormap != nullptr)
+    scales.push_back({s.config.color_by, s.colormap, s.color_range.lo, s.color_range.hi});
+  if (s.config.volume) {
+    scales.push_back({s.config.field, render::find_colormap(s.config.volume->colormap_name),
+                      s.color_range.lo, s.color_range.hi});
+  }
+  if (s.cap_colormap != nullptr)
+    scales.push_back({s.config.shading.cap.field, s.cap_colormap, s.cap_range.lo, s.cap_range.hi});
+  return scales;
+}
+
 // On the writer rank: the view's image and log row to the writer thread.
 void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
                                 const SceneCounters& sums, std::uint64_t rss) {
@@ -607,8 +652,7 @@ void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
   job.image = std::move(image);
   std::copy(std::begin(s.config.background), std::end(s.config.background), job.background);
   job.record = r;
-  job.annotations = annotations_for(s.config, r, s.colormap, static_cast<float>(s.color_range.lo),
-                                    static_cast<float>(s.color_range.hi));
+  job.annotations = annotations_for(s.config, r, color_scales(s));
   // The viewer page goes with the run's first image, not at create: creating writes only what
   // must exist before any step (folders, table headers), so a nearly full disk fails at an image.
   if (!viewer_page_sent_ && config_.output.cinema) {

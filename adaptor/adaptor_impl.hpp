@@ -11,6 +11,7 @@
 
 #include "cell_tets.hpp"
 
+#include "annotations.hpp"
 #include "camera_path.hpp"
 #include "collective.hpp"
 #include "config.hpp"
@@ -57,7 +58,8 @@ class Adaptor::Impl {
     const render::Colormap* colormap = nullptr;  // null without color_by
     bool due = false;                            // this step; cleared when the scene is skipped
     bool skipped_last = false;                // at its last due step: its inputs are checked again
-    render::ValueRange color_range;           // of the colormap, this step
+    render::ValueRange color_range;           // of the colormap (a volume scene: its transfer
+                                              // function's), this step
     std::vector<View> views;                  // one without an orbit
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
@@ -66,6 +68,10 @@ class Adaptor::Impl {
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
     std::vector<render::LayerImage> layers;  // per view, a transparent scene's (scene_layers.hpp)
     StepRecord record;
+    // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.
+    const render::Colormap* cap_colormap = nullptr;
+    render::ValueRange cap_range;  // of the cap's colormap, this step
+    std::vector<float> cap_field;  // per vertex of the scene's volume
   };
 
   static constexpr std::size_t kAnyVolume = ~std::size_t{0};
@@ -100,6 +106,9 @@ class Adaptor::Impl {
   Status composite_layered_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
                                 Status& local_failure);
   render::TraceOptions trace_options(const SceneState& s) const;
+  std::vector<ColorScale> color_scales(const SceneState& s) const;
+  void load_cap(SceneState& s, const render::ValueRange& global,
+                std::span<const FieldView> fields) const;
   // Scene k's camera for view v (its orbit's, or the camera as given).
   render::Camera view_camera(const SceneState& s, std::size_t k, std::size_t v) const;
 

@@ -22,15 +22,16 @@ std::string caption_text(const std::string& scene, std::int64_t step, double tim
 }
 
 render::Annotations annotations_for(const config::Scene& scene, const StepRecord& record,
-                                    const render::Colormap* colormap, float lo, float hi) {
+                                    std::span<const ColorScale> scales) {
   const config::Annotations& spec = scene.annotations;
   render::Annotations a;
   if (!spec.font) return a;
   a.font = spec.font;
   a.title = spec.title;
   if (spec.time) a.caption = caption_text(scene.name, record.step, record.time);
-  if (spec.colorbar && colormap != nullptr) {
-    a.colorbar = render::ColorbarSpec{scene.color_by, lo, hi, sample_colormap(*colormap)};
+  for (const ColorScale& scale : scales) {
+    if (!spec.colorbar) break;
+    a.colorbars.push_back({scale.label, scale.lo, scale.hi, sample_colormap(*scale.colormap)});
   }
   return a;
 }

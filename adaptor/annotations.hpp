@@ -3,6 +3,9 @@
 // rank only, and only for scenes that ask for annotations.
 #pragma once
 
+#include <span>
+#include <string>
+
 #include "config.hpp"
 #include "render/annotate/annotate.hpp"
 #include "render/trace/colormap.hpp"
@@ -13,9 +16,16 @@ namespace tetray {
 // The caption: "<scene>   step <step>   t = <time>".
 std::string caption_text(const std::string& scene, std::int64_t step, double time);
 
-// Empty when the scene asks for none. `colormap` and [lo, hi] are the ones the surfaces were
-// colored with (null without color_by).
+// One colormapped thing a scene drew this step (surfaces colored by a field, a clip cap, a
+// volume's transfer function): its field's name, its colormap and the range it used.
+struct ColorScale {
+  std::string label;
+  const render::Colormap* colormap = nullptr;
+  double lo = 0, hi = 1;
+};
+
+// Empty when the scene asks for none; with `colorbar`, one bar per scale, in order.
 render::Annotations annotations_for(const config::Scene& scene, const StepRecord& record,
-                                    const render::Colormap* colormap, float lo, float hi);
+                                    std::span<const ColorScale> scales);
 
 }  // namespace tetray

@@ -48,11 +48,6 @@ struct CameraSpec {
   double fov_deg = 40;                    // auto-fit
 };
 
-struct ColorRange {
-  bool automatic = true;  // global min/max of the color field at each rendered step
-  float lo = 0, hi = 1;
-};
-
 // Drawn on the written image (render/annotate); the font is opened when the config is read and
 // null when nothing is to be drawn.
 struct Annotations {

@@ -9,9 +9,12 @@ Annotations parse_annotations(const YamlReader& r, const YAML::Node& node, const
   if (node["colorbar"]) a.colorbar = r.boolean(node["colorbar"], child_key(key, "colorbar"));
   if (node["time"]) a.time = r.boolean(node["time"], child_key(key, "time"));
   if (node["title"]) a.title = r.string(node["title"], child_key(key, "title"));
-  if (a.colorbar && scene.color_by.empty()) {
+  const bool colormapped =
+      !scene.color_by.empty() || !scene.shading.cap.field.empty() || scene.volume.has_value();
+  if (a.colorbar && !colormapped) {
     r.fail(node["colorbar"], child_key(key, "colorbar"),
-           "needs color_by (a scene with one color per isovalue has no colormap to show)");
+           "needs color_by, a clip cap or a volume scene (a scene with one color per isovalue "
+           "has no colormap to show)");
   }
   const std::string font_key = child_key(key, "font");
   const std::string path =

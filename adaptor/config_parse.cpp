@@ -11,12 +11,12 @@
 
 #include "camera_path.hpp"
 #include "config_annotations.hpp"
+#include "config_colormap_parse.hpp"
 #include "config_lod.hpp"
 #include "config_probes.hpp"
 #include "config_shading_parse.hpp"
 #include "config_views.hpp"
 #include "config_volume.hpp"
-#include "render/trace/colormap.hpp"
 #include "render/trace/iso_palette.hpp"
 #include "yaml_reader.hpp"
 
@@ -241,24 +241,10 @@ void parse_coloring(const YamlReader& r, const YAML::Node& node, const std::stri
   }
   if (node["colors"]) r.fail(node["colors"], child_key(key, "colors"), "not allowed with color_by");
   s.color_by = r.string(node["color_by"], child_key(key, "color_by"));
-  if (node["colormap"]) {
-    s.colormap_name = r.string(node["colormap"], child_key(key, "colormap"));
-    if (!render::find_colormap(s.colormap_name)) {
-      r.fail(node["colormap"], child_key(key, "colormap"),
-             "unknown colormap '" + s.colormap_name + "' (known: viridis, coolwarm, grayscale)");
-    }
-  }
-  if (const YAML::Node range = node["color_range"]) {
-    const std::string range_key = child_key(key, "color_range");
-    if (range.IsScalar()) {
-      r.choice(range, range_key, {"auto"});
-      return;
-    }
-    const auto lo_hi =
-        r.numbers_in(range, range_key, 2, 2, -render::kMaxFieldValue, render::kMaxFieldValue);
-    if (!(lo_hi[0] < lo_hi[1])) r.fail(range, range_key, "needs low < high");
-    s.color_range = {false, static_cast<float>(lo_hi[0]), static_cast<float>(lo_hi[1])};
-  }
+  if (node["colormap"])
+    s.colormap_name = parse_colormap_name(r, node["colormap"], child_key(key, "colormap"));
+  if (node["color_range"])
+    s.color_range = parse_color_range(r, node["color_range"], child_key(key, "color_range"));
 }
 
 void parse_background(const YamlReader& r, const YAML::Node& node, const std::string& key,

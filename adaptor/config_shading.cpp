@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "config_colormap_parse.hpp"
 #include "config_shading_parse.hpp"
 #include "render/core/value_bounds.hpp"
 
@@ -53,12 +54,28 @@ void parse_clip_planes(const YamlReader& r, const YAML::Node& node, const std::s
   clip.plane_count = static_cast<int>(node.size());
 }
 
+void parse_cap(const YamlReader& r, const YAML::Node& node, const std::string& key, CapSpec& cap) {
+  r.expect_map(node, key);
+  r.allow_keys(node, key, {"field", "colormap", "range"});
+  if (!node["field"]) r.fail(node, child_key(key, "field"), "missing (required)");
+  cap.field = r.string(node["field"], child_key(key, "field"));
+  if (cap.field.empty()) r.fail(node["field"], child_key(key, "field"), "must name a field");
+  if (node["colormap"])
+    cap.colormap_name = parse_colormap_name(r, node["colormap"], child_key(key, "colormap"));
+  if (node["range"]) cap.range = parse_color_range(r, node["range"], child_key(key, "range"));
+}
+
 void parse_clip(const YamlReader& r, const YAML::Node& node, const std::string& key,
-                render::ClipRegion& clip) {
-  r.allow_keys(node, key, {"box", "planes"});
-  if (!node["box"] && !node["planes"]) r.fail(node, key, "give a box, planes or both");
-  if (node["box"]) parse_clip_box(r, node["box"], child_key(key, "box"), clip);
-  if (node["planes"]) parse_clip_planes(r, node["planes"], child_key(key, "planes"), clip);
+                ShadingSpec& spec) {
+  r.allow_keys(node, key, {"box", "planes", "cap"});
+  if (!node["box"] && !node["planes"]) {
+    r.fail(node, key,
+           node["cap"] ? "cap needs a box or planes to cut the mesh along"
+                       : "give a box, planes or both");
+  }
+  if (node["box"]) parse_clip_box(r, node["box"], child_key(key, "box"), spec.clip);
+  if (node["planes"]) parse_clip_planes(r, node["planes"], child_key(key, "planes"), spec.clip);
+  if (node["cap"]) parse_cap(r, node["cap"], child_key(key, "cap"), spec.cap);
 }
 
 void parse_light(const YamlReader& r, const YAML::Node& node, const std::string& key,
@@ -120,6 +137,9 @@ void parse_layers(const YamlReader& r, const YAML::Node& scene, const std::strin
     if (values.size() != surfaces.size()) r.fail(opacity, opacity_key, "give one per isovalue");
     for (std::size_t k = 0; k < values.size(); ++k)
       surfaces[k].opacity = static_cast<float>(values[k]);
+    // The cap pass fills the opaque image's pixels; layered scenes composite fragments instead.
+    if (!spec.cap.field.empty() && render::has_transparency(surfaces))
+      r.fail(opacity, opacity_key, "a transparent surface cannot be combined with clip.cap");
   }
   if (const YAML::Node layers = scene["max_layers"]) {
     spec.max_layers =
@@ -132,7 +152,13 @@ void parse_shading(const YamlReader& r, const YAML::Node& scene, const std::stri
   if (const YAML::Node shading = scene["shading"]) {
     spec.smooth = r.choice(shading, child_key(key, "shading"), {"smooth", "flat"}) == "smooth";
   }
-  if (const YAML::Node clip = scene["clip"]) parse_clip(r, clip, child_key(key, "clip"), spec.clip);
+  if (const YAML::Node clip = scene["clip"]) {
+    if (clip["cap"] && scene["volume"]) {
+      r.fail(clip["cap"], child_key(child_key(key, "clip"), "cap"),
+             "not allowed in a volume scene (a cap cuts isosurface scenes)");
+    }
+    parse_clip(r, clip, child_key(key, "clip"), spec);
+  }
 }
 
 }  // namespace tetray::config

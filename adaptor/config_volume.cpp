@@ -1,7 +1,8 @@
 #include "config_volume.hpp"
 
+#include "config_colormap_parse.hpp"
+
 #include "render/core/value_bounds.hpp"
-#include "render/trace/colormap.hpp"
 
 namespace tetray::config {
 namespace {
@@ -42,21 +43,9 @@ void parse_volume_scene(const YamlReader& r, const YAML::Node& node, const std::
   r.allow_keys(v, vkey, {"colormap", "range", "opacity", "unit_distance", "termination"});
   if (!v["opacity"]) r.fail(v, child_key(vkey, "opacity"), "missing (required)");
   VolumeSpec spec;
-  if (v["colormap"]) {
-    spec.colormap_name = r.string(v["colormap"], child_key(vkey, "colormap"));
-    if (!render::find_colormap(spec.colormap_name)) {
-      r.fail(v["colormap"], child_key(vkey, "colormap"),
-             "unknown colormap '" + spec.colormap_name + "' (known: viridis, coolwarm, grayscale)");
-    }
-  }
-  if (const YAML::Node range = v["range"]; range && !range.IsScalar()) {
-    const auto lo_hi = r.numbers_in(range, child_key(vkey, "range"), 2, 2, -render::kMaxFieldValue,
-                                    render::kMaxFieldValue);
-    if (!(lo_hi[0] < lo_hi[1])) r.fail(range, child_key(vkey, "range"), "needs low < high");
-    spec.range = {false, static_cast<float>(lo_hi[0]), static_cast<float>(lo_hi[1])};
-  } else if (range) {
-    r.choice(range, child_key(vkey, "range"), {"auto"});
-  }
+  if (v["colormap"])
+    spec.colormap_name = parse_colormap_name(r, v["colormap"], child_key(vkey, "colormap"));
+  if (v["range"]) spec.range = parse_color_range(r, v["range"], child_key(vkey, "range"));
   spec.opacity = parse_opacity(r, v["opacity"], child_key(vkey, "opacity"));
   if (v["unit_distance"]) {
     spec.unit_distance =

@@ -5,7 +5,7 @@
 namespace tetray {
 namespace {
 
-constexpr std::size_t kRangesPerScene = 4;    // box x, y, z, then color
+constexpr std::size_t kRangesPerScene = 5;    // box x, y, z, color, then cap
 constexpr std::size_t kCountersPerScene = 4;  // tets, kept, skipped, bytes
 
 }  // namespace
@@ -22,6 +22,7 @@ std::vector<render::ValueRange> pack(const StepRanges& ranges) {
   for (const SceneRanges& scene : ranges.scenes) {
     packed.insert(packed.end(), std::begin(scene.box.axis), std::end(scene.box.axis));
     packed.push_back(scene.color);
+    packed.push_back(scene.cap);
   }
   return packed;
 }
@@ -32,6 +33,7 @@ void unpack(std::span<const render::ValueRange> packed, StepRanges& ranges) {
     const auto scene = packed.subspan(3 + kRangesPerScene * k, kRangesPerScene);
     std::copy_n(scene.begin(), 3, std::begin(ranges.scenes[k].box.axis));
     ranges.scenes[k].color = scene[3];
+    ranges.scenes[k].cap = scene[4];
   }
 }
 

@@ -16,6 +16,7 @@ namespace tetray {
 struct SceneRanges {
   render::BoundingBox box;   // of the scene's volume: the automatic camera fit
   render::ValueRange color;  // of its color_by field: the automatic colormap range
+  render::ValueRange cap;    // of its clip cap's field: the cap's automatic range
 };
 
 struct StepRanges {

@@ -49,7 +49,10 @@ AnnotationLayout draw_annotations(Framebuffer& image, const Annotations& annotat
     const TextMask caption = style.font->rasterize(annotations.caption, style.font_px);
     layout.caption = draw_label(image, caption, margin, y, style);
   }
-  if (annotations.colorbar) draw_colorbar(image, *annotations.colorbar, style, layout);
+  const int slots = static_cast<int>(annotations.colorbars.size());
+  layout.colorbars.resize(annotations.colorbars.size());
+  for (int k = 0; k < slots; ++k)
+    draw_colorbar(image, annotations.colorbars[k], style, k, slots, layout.colorbars[k]);
   return layout;
 }
 

@@ -40,15 +40,17 @@ TextMask dilate(const TextMask& mask, int radius) {
   return out;
 }
 
-// Where the ramp and its ticks go: centred vertically under the field's name, half the image
-// tall, its labels ending one margin from the right edge.
-PixelBox bar_box(const Framebuffer& image, int font_px, int label_width, int title_height) {
+// Where the ramp and its ticks go: centred vertically in its slice of the image under the
+// field's name, half the slice tall, its labels ending one margin from the right edge.
+PixelBox bar_box(const Framebuffer& image, int font_px, int label_width, int title_height, int slot,
+                 int slots) {
   const int margin = static_cast<int>(std::lround(0.75 * font_px));
   const int bar_width = std::max(4, static_cast<int>(std::lround(0.9 * font_px)));
   const int tick = std::max(2, static_cast<int>(std::lround(0.35 * font_px)));
   const int gap = std::max(1, static_cast<int>(std::lround(0.25 * font_px)));
-  const int height = std::max(2, image.height / 2);
-  const int top = (image.height - height + title_height) / 2;
+  const int slice = image.height / slots;
+  const int height = std::max(2, slice / 2);
+  const int top = slot * slice + (slice - height + title_height) / 2;
   const int right = image.width - margin - label_width - gap - tick;
   return {right - bar_width, top, right, top + height};
 }
@@ -73,8 +75,8 @@ void colorbar_color(const ColorbarSpec& spec, double t, float rgb[3]) {
   }
 }
 
-void draw_colorbar(Framebuffer& image, const ColorbarSpec& spec, const TextStyle& style,
-                   AnnotationLayout& layout) {
+void draw_colorbar(Framebuffer& image, const ColorbarSpec& spec, const TextStyle& style, int slot,
+                   int slots, ColorbarLayout& layout) {
   const Ticks ticks = nice_ticks(spec.lo, spec.hi);
   std::vector<TextMask> labels;
   int label_width = 0;
@@ -84,7 +86,7 @@ void draw_colorbar(Framebuffer& image, const ColorbarSpec& spec, const TextStyle
   }
   const TextMask name = style.font->rasterize(spec.label, style.font_px);
   const int gap = std::max(1, static_cast<int>(std::lround(0.25 * style.font_px)));
-  const PixelBox bar = bar_box(image, style.font_px, label_width, name.height + gap);
+  const PixelBox bar = bar_box(image, style.font_px, label_width, name.height + gap, slot, slots);
   const int line = std::max(1, static_cast<int>(std::lround(style.font_px / 14.0)));
   // The ramp: row j shows the value at its centre, lo at the bottom.
   for (int y = bar.y0; y < bar.y1; ++y) {

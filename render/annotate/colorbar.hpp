@@ -1,5 +1,6 @@
 // The colorbar of annotate.hpp: a vertical ramp from lo (bottom) to hi (top) at the right edge,
-// framed, with ticks and their labels to its right and the field's name above.
+// framed, with ticks and their labels to its right and the field's name above; several share
+// the height, one above the other.
 #pragma once
 
 #include "annotate.hpp"
@@ -19,9 +20,10 @@ struct TextStyle {
 // between the spec's samples).
 void colorbar_color(const ColorbarSpec& spec, double t, float rgb[3]);
 
-// Draws the colorbar and records its boxes, ticks and labels in `layout`.
-void draw_colorbar(Framebuffer& image, const ColorbarSpec& spec, const TextStyle& style,
-                   AnnotationLayout& layout);
+// Draws the colorbar in slice `slot` of `slots` equal horizontal slices of the image and
+// records its boxes, ticks and labels in `layout`.
+void draw_colorbar(Framebuffer& image, const ColorbarSpec& spec, const TextStyle& style, int slot,
+                   int slots, ColorbarLayout& layout);
 
 // A line of text with its halo, its top-left corner at (x, y); the box of the text mask.
 PixelBox draw_label(Framebuffer& image, const TextMask& mask, int x, int y, const TextStyle& style);

@@ -169,11 +169,16 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
 }
 
 void load_color_field(TetVolume& volume, const FieldSource& field) {
-  volume.color_field.resize(volume.vertices.size());
+  load_vertex_field(volume, field, volume.color_field);
+}
+
+void load_vertex_field(const TetVolume& volume, const FieldSource& field,
+                       std::vector<float>& per_vertex) {
+  per_vertex.resize(volume.vertices.size());
   with_scalar(field.kind, [&](auto tag) {
     const auto* values = static_cast<const decltype(tag)*>(field.values);
     for_each_point_vertex(volume, field.count, [&](std::size_t p, std::size_t k) {
-      volume.color_field[k] = static_cast<float>(values[p]);
+      per_vertex[k] = static_cast<float>(values[p]);
     });
   });
 }

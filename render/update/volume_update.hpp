@@ -58,4 +58,9 @@ UpdateResult update_volume(TetVolume& volume, Bvh& bvh, const PointSource& point
 // in the vertex store's order.
 void load_color_field(TetVolume& volume, const FieldSource& field);
 
+// The same for any per-vertex field kept beside the volume (a clip cap's): `per_vertex` gets
+// one value per vertex of the store.
+void load_vertex_field(const TetVolume& volume, const FieldSource& field,
+                       std::vector<float>& per_vertex);
+
 }  // namespace tetray::render

@@ -47,6 +47,16 @@ std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Ve
 
 }  // namespace
 
+std::optional<PointLocation> locate_strictly_inside(const TetVolume& volume, std::uint32_t tet,
+                                                    Vec3d local) {
+  std::optional<PointLocation> at = in_tet(volume, tet, local);
+  if (!at) return at;
+  for (double w : at->weight) {
+    if (w <= kFaceSlack) return std::nullopt;
+  }
+  return at;
+}
+
 std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local) {
   if (bvh.empty()) return std::nullopt;
   std::optional<PointLocation> best;

@@ -73,5 +73,20 @@ TEST(ConfigLayers, AVolumeSceneTakesNoOpacityList) {
   EXPECT_NE(r.error.find("scenes[0].opacity"), std::string::npos) << r.error;
 }
 
+TEST(ConfigLayers, TransparencyAndAClipCapAreRefusedTogether) {
+  const ParseResult capped = parse_config(
+      scene_with("    clip: {planes: [{point: [0, 0, 0], normal: [0, 0, 1]}], cap: {field: f}}\n"
+                 "    opacity: [1, 1, 1]\n"),
+      "c.yaml");
+  ASSERT_TRUE(capped.config) << capped.error;  // all opaque: the cap is drawn
+  const ParseResult r = parse_config(
+      scene_with("    clip: {planes: [{point: [0, 0, 0], normal: [0, 0, 1]}], cap: {field: f}}\n"
+                 "    opacity: [1, 0.5, 1]\n"),
+      "c.yaml");
+  ASSERT_FALSE(r.config);
+  EXPECT_NE(r.error.find("scenes[0].opacity"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("clip.cap"), std::string::npos) << r.error;
+}
+
 }  // namespace
 }  // namespace tetray::config

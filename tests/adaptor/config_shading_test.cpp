@@ -63,6 +63,39 @@ TEST(ConfigShading, ReadsTheLights) {
   EXPECT_FLOAT_EQ(scene.ambient, 0.3f);
 }
 
+TEST(ConfigShading, ReadsTheClipCap) {
+  const ParseResult r = parse_config(
+      scene_with("    clip:\n"
+                 "      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+                 "      cap: {field: temperature, colormap: coolwarm, range: [-2, 3]}\n"),
+      "a.yaml");
+  ASSERT_TRUE(r.config) << r.error;
+  const CapSpec& cap = r.config->scenes[0].shading.cap;
+  EXPECT_EQ(cap.field, "temperature");
+  EXPECT_EQ(cap.colormap_name, "coolwarm");
+  EXPECT_FALSE(cap.range.automatic);
+  EXPECT_EQ(cap.range.lo, -2);
+  EXPECT_EQ(cap.range.hi, 3);
+  const ParseResult defaults = parse_config(
+      scene_with("    clip: {box: {min: [0, 0, 0], max: [1, 1, 1]}, cap: {field: t}}\n"), "a.yaml");
+  ASSERT_TRUE(defaults.config) << defaults.error;
+  EXPECT_EQ(defaults.config->scenes[0].shading.cap.colormap_name, "viridis");
+  EXPECT_TRUE(defaults.config->scenes[0].shading.cap.range.automatic);
+  const ParseResult none = parse_config(scene_with(""), "a.yaml");
+  ASSERT_TRUE(none.config) << none.error;
+  EXPECT_TRUE(none.config->scenes[0].shading.cap.field.empty());  // no cap by default
+}
+
+TEST(ConfigShading, RefusesACapInAVolumeScene) {
+  const ParseResult r = parse_config(
+      "scenes:\n  - name: v\n    field: f\n    volume: {opacity: [[0, 1]]}\n"
+      "    clip: {planes: [{point: [0, 0, 0], normal: [1, 0, 0]}], cap: {field: f}}\n",
+      "v.yaml");
+  ASSERT_FALSE(r.config);
+  EXPECT_NE(r.error.find("v.yaml:5:"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("scenes[0].clip.cap"), std::string::npos) << r.error;
+}
+
 struct BadKey {
   std::string keys;
   std::string line;  // "a.yaml:<line>:"
@@ -99,6 +132,25 @@ INSTANTIATE_TEST_SUITE_P(
                " {point: [0, 0, 0], normal: [1, 0, 0]}, {point: [0, 0, 0], normal: [1, 0, 0]},"
                " {point: [0, 0, 0], normal: [1, 0, 0]}, {point: [0, 0, 0], normal: [1, 0, 0]}]\n",
                "a.yaml:6:", "scenes[0].clip.planes"},
+        BadKey{"    clip: {cap: {field: t}}\n", "a.yaml:5:", "scenes[0].clip"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: {colormap: viridis}\n",
+               "a.yaml:7:", "scenes[0].clip.cap.field"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: {field: t, colormap: jet}\n",
+               "a.yaml:7:", "scenes[0].clip.cap.colormap"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: {field: t, range: [2, 1]}\n",
+               "a.yaml:7:", "scenes[0].clip.cap.range"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: {field: t, range: sometimes}\n",
+               "a.yaml:7:", "scenes[0].clip.cap.range"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: {field: t, opacity: 1}\n",
+               "a.yaml:7:", "scenes[0].clip.cap"},
+        BadKey{"    clip:\n      planes: [{point: [0, 0, 0], normal: [1, 0, 0]}]\n"
+               "      cap: temperature\n",
+               "a.yaml:7:", "scenes[0].clip.cap"},
         BadKey{"    lights: []\n", "a.yaml:5:", "scenes[0].lights"},
         BadKey{"    lights: [{type: headlight}, {type: headlight}]\n",
                "a.yaml:5:", "scenes[0].lights[1]"},

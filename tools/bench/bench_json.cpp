@@ -72,6 +72,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["walk"]["vtk_volume"] = vtk_volume_json(figures.vtk_volume);
   json["shading"] = shading_json(figures.shading);
   json["layers"] = layers_json(figures.layers);
+  json["cap"] = cap_json(figures.cap);
   return json;
 }
 

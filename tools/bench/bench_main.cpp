@@ -70,6 +70,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   }
   figures.shading = measure_shading(scene, camera);
   figures.layers = measure_layers(scene, camera);
+  figures.cap = measure_cap(scene, camera);
   figures.cpu_share = (process_cpu_seconds() - cpu_start) / (wall.ms() * 1e-3 * options.threads);
   figures.peak_rss_mib = peak_rss_mib();
   return figures;

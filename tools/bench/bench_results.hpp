@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cap.hpp"
 #include "bench_layers.hpp"
 #include "bench_shading.hpp"
 #include "bench_vtk_volume.hpp"
@@ -77,6 +78,7 @@ struct SceneFigures {
   VtkVolumeFigures vtk_volume;  // measured at the run's first size only
   ShadingFigures shading;
   LayerFigures layers;
+  CapFigures cap;
 
   const PacketFigures& packet(render::PacketSize size) const;
 };

@@ -86,6 +86,7 @@ void print_scene(const SceneFigures& s) {
   print_vtk_volume(s.vtk_volume);
   print_shading(s.shading);
   print_layers(s.layers);
+  print_cap(s.cap);
   print_targets(s);
   std::fflush(stdout);
 }

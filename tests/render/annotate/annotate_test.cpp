@@ -35,7 +35,8 @@ ColorbarSpec colorbar_of(const char* colormap, double lo, double hi) {
 }
 
 Annotations full_annotations(double lo = -3.7, double hi = 12.1) {
-  return {default_font(), "Heat flow", "beam   step 12   t = 0.24", colorbar_of("viridis", lo, hi)};
+  return {
+      default_font(), "Heat flow", "beam   step 12   t = 0.24", {colorbar_of("viridis", lo, hi)}};
 }
 
 bool inked(const Framebuffer& image, int x, int y) {
@@ -66,42 +67,76 @@ float steepest_slope(const Colormap& map) {
 
 PixelBox grown(const PixelBox& b, int by) { return {b.x0 - by, b.y0 - by, b.x1 + by, b.y1 + by}; }
 
+// The ramp's pixels at each tick row against the colormap at the tick's value, and its ends.
+void expect_ramp_matches(const Framebuffer& image, const ColorbarLayout& bar, const char* name,
+                         double lo, double hi) {
+  ASSERT_GE(bar.tick_values.size(), 3u);
+  ASSERT_LE(bar.tick_values.size(), 7u);
+  const int x = (bar.bar.x0 + bar.bar.x1) / 2;
+  // A row spans 1/height of the range: the colormap moves by at most its steepest slope times
+  // that (the tick's value lies within the row), plus rounding.
+  const float tolerance =
+      steepest_slope(*find_colormap(name)) / static_cast<float>(bar.bar.height()) + 1e-4f;
+  const auto expect_color_at = [&](int y, double value) {
+    float want[3];
+    find_colormap(name)->lookup(static_cast<float>((value - lo) / (hi - lo)), want);
+    const float* got = &image.rgba[4 * image.index(x, y)];
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tolerance) << "row " << y;
+    EXPECT_EQ(got[3], 1.0f);
+  };
+  for (std::size_t k = 0; k < bar.tick_values.size(); ++k) {
+    EXPECT_GE(bar.tick_values[k], lo);  // ticks inside the range the colors use
+    EXPECT_LE(bar.tick_values[k], hi);
+    expect_color_at(bar.tick_rows[k], bar.tick_values[k]);
+  }
+  expect_color_at(bar.bar.y1 - 1, lo);  // lo at the bottom
+  expect_color_at(bar.bar.y0, hi);      // hi at the top
+}
+
 TEST(Annotate, RampMatchesTheColormapAtEveryTick) {
   for (const char* name : {"viridis", "coolwarm", "grayscale"}) {
     SCOPED_TRACE(name);
     Framebuffer image(640, 480);
     const double lo = -3.7, hi = 12.1;
-    const Annotations a{default_font(), "", "", colorbar_of(name, lo, hi)};
+    const Annotations a{default_font(), "", "", {colorbar_of(name, lo, hi)}};
     const AnnotationLayout layout = draw_annotations(image, a, kTransparent);
-    ASSERT_GE(layout.tick_values.size(), 3u);
-    ASSERT_LE(layout.tick_values.size(), 7u);
-    const int x = (layout.bar.x0 + layout.bar.x1) / 2;
-    // A row spans 1/height of the range: the colormap moves by at most its steepest slope times
-    // that (the tick's value lies within the row), plus rounding.
-    const float tolerance =
-        steepest_slope(*find_colormap(name)) / static_cast<float>(layout.bar.height()) + 1e-4f;
-    const auto expect_color_at = [&](int y, double value) {
-      float want[3];
-      find_colormap(name)->lookup(static_cast<float>((value - lo) / (hi - lo)), want);
-      const float* got = &image.rgba[4 * image.index(x, y)];
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tolerance) << "row " << y;
-      EXPECT_EQ(got[3], 1.0f);
-    };
-    for (std::size_t k = 0; k < layout.tick_values.size(); ++k) {
-      expect_color_at(layout.tick_rows[k], layout.tick_values[k]);
-    }
-    expect_color_at(layout.bar.y1 - 1, lo);  // lo at the bottom
-    expect_color_at(layout.bar.y0, hi);      // hi at the top
+    ASSERT_EQ(layout.colorbars.size(), 1u);
+    expect_ramp_matches(image, layout.colorbars[0], name, lo, hi);
   }
+}
+
+// A scene with several colormapped things (a surface colored by a field, a cap) gets one bar
+// each, one above the other in order, each with its own colormap, range and ticks.
+TEST(Annotate, SeveralColorbarsStackWithTheirOwnRamps) {
+  Framebuffer image(800, 800);
+  Annotations a{default_font(), "Heat flow", "", {}};
+  a.colorbars = {colorbar_of("viridis", -3.7, 12.1), colorbar_of("coolwarm", 0.2, 0.9),
+                 colorbar_of("grayscale", 300, 420)};
+  const AnnotationLayout layout = draw_annotations(image, a, kTransparent);
+  ASSERT_EQ(layout.colorbars.size(), 3u);
+  expect_ramp_matches(image, layout.colorbars[0], "viridis", -3.7, 12.1);
+  expect_ramp_matches(image, layout.colorbars[1], "coolwarm", 0.2, 0.9);
+  expect_ramp_matches(image, layout.colorbars[2], "grayscale", 300, 420);
+  EXPECT_LT(layout.title.x1, layout.colorbars[0].bar_label.x0);  // the title at the left
+  for (std::size_t k = 0; k < layout.colorbars.size(); ++k) {
+    const ColorbarLayout& bar = layout.colorbars[k];
+    EXPECT_LE(bar.bar_label.y1, bar.bar.y0);
+    EXPECT_GT(bar.bar.x0, 3 * image.width / 4);
+    EXPECT_GE(bar.bar.height(), image.height / 8);
+    if (k > 0) {
+      EXPECT_LT(layout.colorbars[k - 1].bar.y1, bar.bar_label.y0) << k;  // no overlap
+    }
+  }
+  EXPECT_LE(layout.colorbars.back().bar.y1, image.height);
 }
 
 TEST(Annotate, TickLabelsSitBesideTheirTicksInOrder) {
   Framebuffer image(800, 600);
   const AnnotationLayout layout = draw_annotations(image, full_annotations(), kTransparent);
-  ASSERT_EQ(layout.tick_labels.size(), layout.tick_rows.size());
-  for (std::size_t k = 0; k < layout.tick_rows.size(); ++k) {
-    const PixelBox& label = layout.tick_labels[k];
-    EXPECT_GT(label.x0, layout.bar.x1);
+  ASSERT_EQ(layout.colorbars.at(0).tick_labels.size(), layout.colorbars.at(0).tick_rows.size());
+  for (std::size_t k = 0; k < layout.colorbars.at(0).tick_rows.size(); ++k) {
+    const PixelBox& label = layout.colorbars.at(0).tick_labels[k];
+    EXPECT_GT(label.x0, layout.colorbars.at(0).bar.x1);
     EXPECT_LE(label.x1, image.width);
     // The digits' ink is centred on the tick's row to within a quarter em.
     int top = label.y1, bottom = label.y0;
@@ -113,9 +148,11 @@ TEST(Annotate, TickLabelsSitBesideTheirTicksInOrder) {
         }
       }
     }
-    EXPECT_NEAR(0.5 * (top + bottom), layout.tick_rows[k], 0.25 * layout.font_px) << k;
+    EXPECT_NEAR(0.5 * (top + bottom), layout.colorbars.at(0).tick_rows[k], 0.25 * layout.font_px)
+        << k;
     if (k > 0) {
-      EXPECT_LT(layout.tick_rows[k], layout.tick_rows[k - 1]);  // higher value, higher
+      EXPECT_LT(layout.colorbars.at(0).tick_rows[k],
+                layout.colorbars.at(0).tick_rows[k - 1]);  // higher value, higher
     }
   }
 }
@@ -125,10 +162,12 @@ TEST(Annotate, InkLandsOnlyInTheLayoutsBoxes) {
   const AnnotationLayout layout = draw_annotations(image, full_annotations(), kTransparent);
   // The frame and ticks lie within a line width (at most font_px / 14 + 1) right of the bar.
   const int line = layout.font_px / 14 + 1;
-  PixelBox bar_and_ticks = grown(layout.bar, line);
-  bar_and_ticks.x1 = layout.tick_labels.front().x0;
-  std::vector<PixelBox> boxes{layout.title, layout.caption, layout.bar_label, bar_and_ticks};
-  boxes.insert(boxes.end(), layout.tick_labels.begin(), layout.tick_labels.end());
+  PixelBox bar_and_ticks = grown(layout.colorbars.at(0).bar, line);
+  bar_and_ticks.x1 = layout.colorbars.at(0).tick_labels.front().x0;
+  std::vector<PixelBox> boxes{layout.title, layout.caption, layout.colorbars.at(0).bar_label,
+                              bar_and_ticks};
+  boxes.insert(boxes.end(), layout.colorbars.at(0).tick_labels.begin(),
+               layout.colorbars.at(0).tick_labels.end());
   for (const PixelBox& box : boxes) EXPECT_GT(ink_in(image, box), 0);
   int stray = 0;
   for (int y = 0; y < image.height; ++y) {
@@ -143,8 +182,8 @@ TEST(Annotate, InkLandsOnlyInTheLayoutsBoxes) {
   EXPECT_LT(layout.title.x1, image.width / 2);
   EXPECT_LE(layout.title.y1, layout.caption.y0 + 1);
   EXPECT_LT(layout.caption.y1, image.height / 4);
-  EXPECT_GT(layout.bar.x0, 3 * image.width / 4);
-  EXPECT_LE(layout.bar_label.y1, layout.bar.y0);
+  EXPECT_GT(layout.colorbars.at(0).bar.x0, 3 * image.width / 4);
+  EXPECT_LE(layout.colorbars.at(0).bar_label.y1, layout.colorbars.at(0).bar.y0);
 }
 
 TEST(Annotate, TextIsAntialiased) {
@@ -187,7 +226,7 @@ TEST(Annotate, SizesScaleWithTheImage) {
   EXPECT_EQ(l.font_px, 2 * s.font_px);
   EXPECT_NEAR(l.caption.height(), 2 * s.caption.height(), 3);
   EXPECT_NEAR(l.caption.width(), 2 * s.caption.width(), 0.05 * l.caption.width());
-  EXPECT_NEAR(l.bar.height(), 2 * s.bar.height(), 1);
+  EXPECT_NEAR(l.colorbars.at(0).bar.height(), 2 * s.colorbars.at(0).bar.height(), 1);
 }
 
 TEST(Annotate, NothingAskedLeavesTheImageAsItWas) {
