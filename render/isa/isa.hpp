@@ -20,13 +20,16 @@ inline constexpr std::array kIsas = {Isa::sse4_2, Isa::avx2, Isa::avx512};
 const char* to_string(Isa isa);
 std::optional<Isa> parse(std::string_view name);
 
+// Whether the CPU (and the operating system) can run the variant; false in a build without
+// variants.
 bool cpu_supports(Isa isa);
 
 // True in a dispatch build (TETRAY_SIMD_TARGET=dispatch), where the kernels exist per Isa.
 bool dispatched();
 
 // The variant the kernels run with. Chosen on first use: the one TETRAY_ISA names, or the best
-// the CPU supports when it is unset or names one the CPU lacks (see choice_note()).
+// the CPU supports when it is unset or names one the CPU lacks (see choice_note()). A build
+// without variants has none: there it is Isa::sse4_2 and names nothing (check dispatched()).
 Isa active();
 
 // Makes `isa` the active variant from now on (tests, benchmarks); false and no change when the

@@ -83,6 +83,7 @@ int run(int n, int size_px, int rounds) {
   const render::Camera camera = bench_camera(size_px);
   render::Framebuffer image;
 
+  const std::string choice = render::isa::choice_note();  // before the bench activates each
   const std::vector<render::isa::Isa> isas = variants();
   std::vector<Figures> figures(isas.size());
   for (std::size_t k = 0; k < isas.size(); ++k) {
@@ -98,7 +99,7 @@ int run(int n, int size_px, int rounds) {
   }
   std::printf("tetray-isa-bench: gyroid-twist n = %d, %zu tets, %dx%d pixels, best of %d rounds\n",
               n, scene.mesh.tet_count(), size_px, size_px, rounds);
-  std::printf("  kernels %s\n", render::isa::choice_note().c_str());
+  std::printf("  kernels %s\n", choice.c_str());
   std::printf("  %-8s %10s %10s %10s\n", "variant", "32x32 ms", "16x16 ms", "refit ms");
   for (const Figures& f : figures) {
     std::printf("  %-8s %10.1f %10.1f %10.2f\n", f.name.c_str(), f.frame_32_ms, f.frame_16_ms,
