@@ -13,6 +13,7 @@
 #include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/isa/isa.hpp"
 #include "render/trace/layer_shading.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
@@ -80,6 +81,10 @@ Status Adaptor::Impl::start() {
   const Status status =
       agree(comm_, guarded("create", [&] { return prepare_outputs_on_this_rank(); }));
   started_ = status.ok();
+  if (started_ && is_writer() && !config_.output.quiet) {
+    std::printf("tetray: kernels %s\n", render::isa::choice_note().c_str());
+    std::fflush(stdout);
+  }
   return status;
 }
 

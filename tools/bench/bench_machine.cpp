@@ -6,6 +6,8 @@
 #include <string>
 #include <thread>
 
+#include "render/isa/isa.hpp"
+
 namespace tetray::bench {
 namespace {
 
@@ -20,9 +22,12 @@ std::string cpu_model() {
   return "unknown";
 }
 
-// The bench is compiled with the same flags as the renderer (TETRAY_SIMD_TARGET), so its
-// predefined macros name the instruction set the kernels use.
-constexpr const char* simd_target() {
+// A dispatch build names the variant it runs; otherwise the bench is compiled with the same
+// flags as the renderer (TETRAY_SIMD_TARGET), so its predefined macros name the instruction set
+// the kernels use.
+std::string simd_target() {
+  if (render::isa::dispatched())
+    return std::string(render::isa::to_string(render::isa::active())) + " (dispatch)";
 #if defined(__AVX512F__)
   return "avx512";
 #elif defined(__AVX2__)
