@@ -8,4 +8,4 @@ scripts/setup.sh
 mpi_flags=(--oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi_flags+=(--allow-run-as-root)
 time mpirun -np 2 "${mpi_flags[@]}" build/bin/tetray-minisolver configs/demo.yaml
-echo "images: out/demo/beam/*.png and out/demo/temperature/*.png; log: out/demo/tetray_log.csv"
+echo "images: out/demo/{beam,temperature,beam_cut,heat_volume}/*.png; viewer: out/demo/index.html; log: out/demo/tetray_log.csv"

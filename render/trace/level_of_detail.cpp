@@ -3,7 +3,6 @@
 // order around their mean and split into a fan of at most two isopolygons.
 #include "render/trace/level_of_detail.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -60,11 +59,14 @@ int proxy_isopolygons(const Bounds4& box, const NodePlane& plane, float iso, Iso
   double angle[6];
   for (int k = 0; k < count; ++k)
     angle[k] = std::atan2(dot(points[k] - mean, v), dot(points[k] - mean, u));
-  std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-  std::sort(order.begin(), order.begin() + count,
-            [&](int a, int b) { return angle[a] < angle[b]; });
+  // Each corner's place around the mean is the number of corners before it by angle (ties by
+  // index): at most six corners, so no sort.
   std::array<Vec3d, 6> ring;
-  for (int k = 0; k < count; ++k) ring[k] = points[order[k]];
+  for (int k = 0; k < count; ++k) {
+    int place = 0;
+    for (int j = 0; j < count; ++j) place += angle[j] < angle[k] || (angle[j] == angle[k] && j < k);
+    ring[place] = points[k];
+  }
   // A fan from corner 0: (0 1 2 3) and (0 3 4 5); a triangle repeats its first corner.
   const auto piece = [&](int a, int b, int c, int d) {
     return d < count ? polygon_of(ring, {a, b, c, d}, 4) : polygon_of(ring, {a, b, c, a}, 3);
