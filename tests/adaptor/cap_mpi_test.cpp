@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shared_dir.hpp"
+#include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/scenes/box_mesh.hpp"
@@ -52,23 +53,6 @@ std::string config(const std::string& directory, bool cap) {
 }
 
 // The tets whose centroid's x falls in this rank's slab, with their global ids.
-struct Slab {
-  std::vector<std::int64_t> tets, ids;
-};
-Slab slab(int rank, int ranks) {
-  const GyroidTwist& g = scene().gyroid;
-  Slab s;
-  for (std::size_t t = 0; t < g.mesh.tet_count(); ++t) {
-    double x = 0;
-    for (int k = 0; k < 4; ++k) x += g.mesh.points[3 * g.mesh.tets[4 * t + k]] / 4;
-    const int owner = std::clamp(static_cast<int>((x + 1) / 2 * ranks), 0, ranks - 1);
-    if (owner != rank) continue;
-    s.tets.insert(s.tets.end(), &g.mesh.tets[4 * t], &g.mesh.tets[4 * t + 4]);
-    s.ids.push_back(static_cast<std::int64_t>(t));
-  }
-  return s;
-}
-
 void render(MPI_Comm comm, const std::string& directory, bool cap, const Slab& part) {
   Status status;
   auto adaptor = Adaptor::create_from_yaml(comm, config(directory, cap), status);
@@ -84,20 +68,14 @@ void render(MPI_Comm comm, const std::string& directory, bool cap, const Slab& p
   ASSERT_TRUE(adaptor->finalize().ok());
 }
 
-std::size_t differing_pixels(const PngPixels& a, const PngPixels& b) {
-  std::size_t count = 0;
-  for (std::size_t p = 0; p + 3 < a.rgba.size() && p + 3 < b.rgba.size(); p += 4)
-    count += !std::equal(&a.rgba[p], &a.rgba[p + 4], &b.rgba[p]);
-  return count;
-}
-
 TEST(CapAcrossRanks, GivesTheImageOfOneRank) {
   const SharedDir shared("cap_across_ranks");
   if (rank() == 0) {
-    render(MPI_COMM_SELF, shared.path() + "/one", true, slab(0, 1));
-    render(MPI_COMM_SELF, shared.path() + "/uncapped", false, slab(0, 1));
+    render(MPI_COMM_SELF, shared.path() + "/one", true, x_slab(scene().gyroid.mesh, 0, 1));
+    render(MPI_COMM_SELF, shared.path() + "/uncapped", false, x_slab(scene().gyroid.mesh, 0, 1));
   }
-  render(MPI_COMM_WORLD, shared.path() + "/split", true, slab(rank(), world_size()));
+  render(MPI_COMM_WORLD, shared.path() + "/split", true,
+         x_slab(scene().gyroid.mesh, rank(), world_size()));
   if (rank() != 0) return;
   const PngPixels one = read_png_rgba8(shared.path() + "/one/cut/cut_000000.png");
   const PngPixels split = read_png_rgba8(shared.path() + "/split/cut/cut_000000.png");
@@ -115,7 +93,7 @@ TEST(CapAcrossRanks, AMissingCapFieldSkipsTheScene) {
   Status status;
   auto adaptor = Adaptor::create_from_yaml(MPI_COMM_WORLD, config(shared.path(), true), status);
   ASSERT_TRUE(adaptor) << status.message;
-  const Slab part = slab(rank(), world_size());
+  const Slab part = x_slab(scene().gyroid.mesh, rank(), world_size());
   const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)),
                       TetsView::of(std::span<const std::int64_t>(part.tets))};
   const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().gyroid.field))};

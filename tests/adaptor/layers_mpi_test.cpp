@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "shared_dir.hpp"
+#include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/scenes/box_mesh.hpp"
@@ -60,20 +61,6 @@ std::string config(const std::string& directory, const Variant& variant) {
          on + "}]\n";
 }
 
-// The tets whose centroid's x falls in this rank's slab.
-std::vector<std::int64_t> slab(int rank, int ranks) {
-  const GyroidTwist& g = scene();
-  std::vector<std::int64_t> tets;
-  for (std::size_t t = 0; t < g.mesh.tet_count(); ++t) {
-    double x = 0;
-    for (int k = 0; k < 4; ++k) x += g.mesh.points[3 * g.mesh.tets[4 * t + k]] / 4;
-    const int owner = std::clamp(static_cast<int>((x + 1) / 2 * ranks), 0, ranks - 1);
-    if (owner != rank) continue;
-    tets.insert(tets.end(), &g.mesh.tets[4 * t], &g.mesh.tets[4 * t + 4]);
-  }
-  return tets;
-}
-
 void render(MPI_Comm comm, const std::string& directory, const Variant& variant,
             const std::vector<std::int64_t>& tets) {
   Status status;
@@ -85,13 +72,6 @@ void render(MPI_Comm comm, const std::string& directory, const Variant& variant,
   status = adaptor->execute(0, 0, mesh, fields);
   ASSERT_TRUE(status.ok()) << status.message;
   ASSERT_TRUE(adaptor->finalize().ok());
-}
-
-std::size_t differing_pixels(const PngPixels& a, const PngPixels& b) {
-  std::size_t count = 0;
-  for (std::size_t p = 0; p + 3 < a.rgba.size() && p + 3 < b.rgba.size(); p += 4)
-    count += !std::equal(&a.rgba[p], &a.rgba[p + 4], &b.rgba[p]);
-  return count;
 }
 
 PngPixels png(const std::string& run) { return read_png_rgba8(run + "/glass/glass_000000.png"); }
@@ -109,7 +89,7 @@ TEST(LayersAcrossRanks, TransparencyClipAndShadowsGiveTheImageOfOneRank) {
     render(MPI_COMM_SELF, shared.path() + "/unshadowed", kUnshadowed, scene().mesh.tets);
     render(MPI_COMM_SELF, shared.path() + "/opaque", kOpaque, scene().mesh.tets);
   }
-  render(MPI_COMM_WORLD, split, kTransparent, slab(rank(), world_size()));
+  render(MPI_COMM_WORLD, split, kTransparent, x_slab(scene().mesh, rank(), world_size()).tets);
   if (rank() != 0) return;
   const PngPixels whole = png(one), parts = png(split);
   const PngPixels unshadowed = png(shared.path() + "/unshadowed");
@@ -129,8 +109,8 @@ TEST(LayersAcrossRanks, TransparencyClipAndShadowsGiveTheImageOfOneRank) {
 TEST(LayersAcrossRanks, AllOpaqueWritesTheBytesOfAnOpaqueScene) {
   const SharedDir shared("layers_all_opaque");
   const std::string plain = shared.path() + "/plain", keys = shared.path() + "/keys";
-  render(MPI_COMM_WORLD, plain, kOpaque, slab(rank(), world_size()));
-  render(MPI_COMM_WORLD, keys, kOpaqueByKeys, slab(rank(), world_size()));
+  render(MPI_COMM_WORLD, plain, kOpaque, x_slab(scene().mesh, rank(), world_size()).tets);
+  render(MPI_COMM_WORLD, keys, kOpaqueByKeys, x_slab(scene().mesh, rank(), world_size()).tets);
   if (rank() != 0) return;
   for (const char* format : {"png", "exr"}) {
     const std::string file = std::string("/glass/glass_000000.") + format;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shared_dir.hpp"
+#include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/scenes/box_mesh.hpp"
@@ -44,20 +45,6 @@ std::string config(const std::string& directory, bool shadows) {
          on + "}]\n";
 }
 
-// The tets whose centroid's x falls in this rank's slab.
-std::vector<std::int64_t> slab(int rank, int ranks) {
-  const GyroidTwist& g = scene();
-  std::vector<std::int64_t> tets;
-  for (std::size_t t = 0; t < g.mesh.tet_count(); ++t) {
-    double x = 0;
-    for (int k = 0; k < 4; ++k) x += g.mesh.points[3 * g.mesh.tets[4 * t + k]] / 4;
-    const int owner = std::clamp(static_cast<int>((x + 1) / 2 * ranks), 0, ranks - 1);
-    if (owner != rank) continue;
-    tets.insert(tets.end(), &g.mesh.tets[4 * t], &g.mesh.tets[4 * t + 4]);
-  }
-  return tets;
-}
-
 void render(MPI_Comm comm, const std::string& directory, bool shadows,
             const std::vector<std::int64_t>& tets) {
   Status status;
@@ -71,20 +58,14 @@ void render(MPI_Comm comm, const std::string& directory, bool shadows,
   ASSERT_TRUE(adaptor->finalize().ok());
 }
 
-std::size_t differing_pixels(const PngPixels& a, const PngPixels& b) {
-  std::size_t count = 0;
-  for (std::size_t p = 0; p + 3 < a.rgba.size() && p + 3 < b.rgba.size(); p += 4)
-    count += !std::equal(&a.rgba[p], &a.rgba[p + 4], &b.rgba[p]);
-  return count;
-}
-
 TEST(ShadingAcrossRanks, ClipAndShadowsGiveTheImageOfOneRank) {
   const SharedDir shared("shading_across_ranks");
   if (rank() == 0) {
     render(MPI_COMM_SELF, shared.path() + "/one", true, scene().mesh.tets);
     render(MPI_COMM_SELF, shared.path() + "/unshadowed", false, scene().mesh.tets);
   }
-  render(MPI_COMM_WORLD, shared.path() + "/split", true, slab(rank(), world_size()));
+  render(MPI_COMM_WORLD, shared.path() + "/split", true,
+         x_slab(scene().mesh, rank(), world_size()).tets);
   if (rank() != 0) return;
   const PngPixels one = read_png_rgba8(shared.path() + "/one/lit/lit_000000.png");
   const PngPixels split = read_png_rgba8(shared.path() + "/split/lit/lit_000000.png");
