@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/walk/clip_cap.hpp"

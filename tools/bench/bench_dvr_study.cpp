@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"

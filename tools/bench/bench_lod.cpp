@@ -6,7 +6,7 @@
 
 #include "bench_reference_embree.hpp"
 #include "bench_reference_vtk.hpp"
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/bvh/node_planes.hpp"
 

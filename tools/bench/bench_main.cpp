@@ -19,7 +19,7 @@
 #include "bench_reference_embree.hpp"
 #include "bench_reference_vtk.hpp"
 #include "bench_refit.hpp"
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_table.hpp"
 #include "bench_tetray.hpp"
 #include "bench_timing.hpp"

@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 
 namespace tetray::bench {

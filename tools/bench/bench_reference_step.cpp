@@ -1,6 +1,6 @@
 #include "bench_reference_step.hpp"
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 

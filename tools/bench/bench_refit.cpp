@@ -7,7 +7,7 @@
 
 #include "bench_bandwidth.hpp"
 #include "bench_reference_step.hpp"
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 
 namespace tetray::bench {

@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/trace/shadow_rays.hpp"
 #include "tools/bench_common/json_file.hpp"

@@ -1,6 +1,6 @@
 #include "bench_tetray.hpp"
 
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 
 namespace tetray::bench {

@@ -24,7 +24,7 @@
 #include <functional>
 
 #include "bench_reference_vtk.hpp"
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"

@@ -7,6 +7,7 @@
 #include "render/walk/hilbert_order.hpp"
 #include "render/walk/tet_walk.hpp"
 #include "render/walk/volume_render.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 
@@ -52,10 +53,7 @@ LayoutFigures measure_layout(const render::TetVolume& volume, const render::Boun
 WalkFigures measure_walk(const GyroidTwist& scene, const render::Camera& camera) {
   render::TetVolume volume;
   render::Bvh bvh;
-  const render::PointSource points{scene.mesh.points.data(), render::ScalarKind::f64, nullptr,
-                                   render::ScalarKind::f64, scene.mesh.point_count()};
-  const render::FieldSource field{scene.field.data(), render::ScalarKind::f64, scene.field.size()};
-  render::load_volume(volume, bvh, scene.mesh.tets, {}, {}, points, field, {});
+  load_scene(scene, volume, bvh);
   WalkFigures figures;
   render::WalkStructure walk = render::build_walk_structure(volume);
   figures.boundary_faces = walk.boundary.faces.size();

@@ -14,8 +14,7 @@
 #include "render/core/stopwatch.hpp"
 #include "render/isa/isa.hpp"
 #include "render/trace/trace.hpp"
-#include "render/update/volume_update.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray {
 namespace {
@@ -27,17 +26,6 @@ struct Figures {
   double refit_ms = std::numeric_limits<double>::infinity();
 };
 
-render::Camera bench_camera(int size_px) {
-  render::Camera camera;
-  camera.eye = {2.5, 1.8, 3.2};
-  camera.look_at = {0, 0, 0};
-  camera.up = {0, 1, 0};
-  camera.fov_deg = 40.0;
-  camera.width = size_px;
-  camera.height = size_px;
-  return camera;
-}
-
 template <typename Work>
 void keep_best(double& best, Work&& work) {
   const render::Stopwatch watch;
@@ -48,7 +36,7 @@ void keep_best(double& best, Work&& work) {
 // One round of the active variant: a frame per packet size and a refit of the geometry.
 void time_round(render::TetVolume& volume, render::Bvh& bvh, const render::Camera& camera,
                 render::Framebuffer& image, Figures& figures) {
-  const render::IsoSurface surface{0.0f, {0.9f, 0.75f, 0.45f}};
+  const render::IsoSurface surface = bench::bench_surface();
   render::TraceOptions options;
   options.packet = render::PacketSize::p32x32;
   keep_best(figures.frame_32_ms, [&] {
@@ -72,15 +60,10 @@ std::vector<render::isa::Isa> variants() {
 
 int run(int n, int size_px, int rounds) {
   const GyroidTwist scene = make_gyroid_twist(n, 0.2);
-  render::PointSource points;
-  points.xyz = scene.mesh.points.data();
-  points.xyz_kind = render::ScalarKind::f64;
-  points.count = scene.mesh.point_count();
-  const render::FieldSource field{scene.field.data(), render::ScalarKind::f64, scene.field.size()};
   render::TetVolume volume;
   render::Bvh bvh;
-  render::load_volume(volume, bvh, scene.mesh.tets, {}, {}, points, field, {});
-  const render::Camera camera = bench_camera(size_px);
+  bench::load_scene(scene, volume, bvh);
+  const render::Camera camera = bench::bench_camera(size_px);
   render::Framebuffer image;
 
   const std::string choice = render::isa::choice_note();  // before the bench activates each

@@ -1,4 +1,4 @@
-#include "bench_scene.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 #include <cmath>
 #include <numbers>
