@@ -54,18 +54,13 @@ std::string config(const std::string& directory, bool cap) {
 
 // The tets whose centroid's x falls in this rank's slab, with their global ids.
 void render(MPI_Comm comm, const std::string& directory, bool cap, const Slab& part) {
-  Status status;
-  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, cap), status);
-  ASSERT_TRUE(adaptor) << status.message;
   TetsView tets = TetsView::of(std::span<const std::int64_t>(part.tets));
   tets.global_ids = part.ids.data();
   const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)), tets};
   const FieldView fields[] = {
       FieldView::of("f", std::span<const double>(scene().gyroid.field)),
       FieldView::of("temperature", std::span<const double>(scene().temperature))};
-  status = adaptor->execute(0, 0, mesh, fields);
-  ASSERT_TRUE(status.ok()) << status.message;
-  ASSERT_TRUE(adaptor->finalize().ok());
+  render_step_zero(comm, config(directory, cap), mesh, fields);
 }
 
 TEST(CapAcrossRanks, GivesTheImageOfOneRank) {

@@ -63,15 +63,10 @@ std::string config(const std::string& directory, const Variant& variant) {
 
 void render(MPI_Comm comm, const std::string& directory, const Variant& variant,
             const std::vector<std::int64_t>& tets) {
-  Status status;
-  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, variant), status);
-  ASSERT_TRUE(adaptor) << status.message;
-  MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
-                TetsView::of(std::span<const std::int64_t>(tets))};
+  const MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
+                      TetsView::of(std::span<const std::int64_t>(tets))};
   const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().field))};
-  status = adaptor->execute(0, 0, mesh, fields);
-  ASSERT_TRUE(status.ok()) << status.message;
-  ASSERT_TRUE(adaptor->finalize().ok());
+  render_step_zero(comm, config(directory, variant), mesh, fields);
 }
 
 PngPixels png(const std::string& run) { return read_png_rgba8(run + "/glass/glass_000000.png"); }

@@ -47,15 +47,10 @@ std::string config(const std::string& directory, bool shadows) {
 
 void render(MPI_Comm comm, const std::string& directory, bool shadows,
             const std::vector<std::int64_t>& tets) {
-  Status status;
-  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, shadows), status);
-  ASSERT_TRUE(adaptor) << status.message;
-  MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
-                TetsView::of(std::span<const std::int64_t>(tets))};
+  const MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
+                      TetsView::of(std::span<const std::int64_t>(tets))};
   const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().field))};
-  status = adaptor->execute(0, 0, mesh, fields);
-  ASSERT_TRUE(status.ok()) << status.message;
-  ASSERT_TRUE(adaptor->finalize().ok());
+  render_step_zero(comm, config(directory, shadows), mesh, fields);
 }
 
 TEST(ShadingAcrossRanks, ClipAndShadowsGiveTheImageOfOneRank) {

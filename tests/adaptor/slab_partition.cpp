@@ -1,5 +1,7 @@
 #include "slab_partition.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 
 namespace tetray::testing {
@@ -15,6 +17,16 @@ Slab x_slab(const BoxMesh& mesh, int rank, int ranks) {
     s.ids.push_back(static_cast<std::int64_t>(t));
   }
   return s;
+}
+
+void render_step_zero(MPI_Comm comm, const std::string& yaml, const MeshView& mesh,
+                      std::span<const FieldView> fields) {
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(comm, yaml, status);
+  ASSERT_TRUE(adaptor) << status.message;
+  status = adaptor->execute(0, 0, mesh, fields);
+  ASSERT_TRUE(status.ok()) << status.message;
+  ASSERT_TRUE(adaptor->finalize().ok());
 }
 
 std::size_t differing_pixels(const PngPixels& a, const PngPixels& b) {
