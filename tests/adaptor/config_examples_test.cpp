@@ -7,7 +7,8 @@ namespace tetray::config {
 namespace {
 
 TEST(ConfigExamples, AllParse) {
-  for (const char* name : {"adaptor_minimal.yaml", "adaptor_full.yaml", "gyroid_replay.yaml"}) {
+  for (const char* name : {"adaptor_minimal.yaml", "adaptor_full.yaml", "gyroid_replay.yaml",
+                           "gyroid_modalities.yaml"}) {
     const ParseResult r = load_config_file(std::string(TETRAY_EXAMPLES_DIR) + "/" + name);
     EXPECT_TRUE(r.config) << r.error;
   }
