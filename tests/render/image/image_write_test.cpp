@@ -1,6 +1,7 @@
 // EXR and PNG files read back with the libraries' own readers and compared with the framebuffer
 // (EXR: half rounding, depth exact; PNG: the sRGB formula evaluated here independently), and
 // failed writes that must leave no temporary file and no damaged image.
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
@@ -11,6 +12,7 @@
 #include <sys/resource.h>
 #include <tbb/task_arena.h>
 
+#include <bit>
 #include <cmath>
 #include <csignal>
 #include <fstream>
@@ -162,6 +164,98 @@ TEST(ExrWrite, CompressionNamesRoundTrip) {
   }
   EXPECT_EQ(exr_compression_named("ZIP"), std::nullopt);
   EXPECT_EQ(exr_compression_named("deflate"), std::nullopt);
+}
+
+// What a rendered frame holds, for the line blocks tetray assembles (none, RLE, ZIPS, ZIP): rows
+// of background, flat spans longer than one RLE code (128 bytes), short runs and noise, and the
+// half's edges (smallest subnormal, a tie, the largest half, the first float that rounds to
+// infinity, -0); 19 lines, so the last ZIP block is short.
+Framebuffer rendered_like_image() {
+  Framebuffer image = random_image(301, 19, 7);
+  for (int y = 0; y < 5; ++y) {  // background rows
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t p = image.index(x, y);
+      std::fill_n(&image.rgba[4 * p], 4, 0.0f);
+      image.depth[p] = std::numeric_limits<float>::infinity();
+    }
+  }
+  for (int x = 10; x < 250; ++x) {  // one flat span
+    const std::size_t p = image.index(x, 8);
+    image.rgba[4 * p + 0] = 0.25f, image.rgba[4 * p + 1] = 0.5f, image.rgba[4 * p + 2] = 0.125f;
+    image.rgba[4 * p + 3] = 1.0f;
+    image.depth[p] = 3.5f;
+  }
+  const float edges[] = {std::ldexp(1.0f, -24),
+                         std::ldexp(3.0f, -25),
+                         1.0f + std::ldexp(1.0f, -11),
+                         65504.0f,
+                         65520.0f,
+                         -0.0f,
+                         1e-9f,
+                         70000.0f};
+  for (std::size_t k = 0; k < std::size(edges); ++k) {
+    image.rgba[4 * image.index(static_cast<int>(k), 12)] = edges[k];
+  }
+  return image;
+}
+
+// Read back with OpenEXR, every value is exactly Imath's half of the framebuffer's (RGBA) and
+// the framebuffer's float (Z), for every compression tetray writes itself, on four threads.
+TEST(ExrWrite, TetrayLineBlocksDecodeExactly) {
+  ScratchDir dir;
+  const Framebuffer image = rendered_like_image();
+  for (ExrCompression compression :
+       {ExrCompression::none, ExrCompression::rle, ExrCompression::zips, ExrCompression::zip}) {
+    const std::string name(exr_compression_info(compression).name);
+    SCOPED_TRACE(name);
+    const std::string path = dir / (name + ".exr");
+    WriteResult result;
+    tbb::task_arena(4).execute([&] { result = write_exr(image, path, compression); });
+    ASSERT_TRUE(result.ok) << result.message;
+    Imf::Header header;
+    const ExrChannels read = read_exr(path, header);
+    EXPECT_EQ(static_cast<int>(header.compression()), static_cast<int>(compression));
+    ASSERT_EQ(read.width, image.width);
+    ASSERT_EQ(read.height, image.height);
+    const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      for (int c = 0; c < 4; ++c) {
+        const float expected = Imath::half(image.rgba[4 * p + c]);
+        ASSERT_EQ(std::bit_cast<std::uint32_t>((*rgba[c])[p]),
+                  std::bit_cast<std::uint32_t>(expected))
+            << "pixel " << p << " channel " << c << ": " << image.rgba[4 * p + c];
+      }
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(read.z[p]),
+                std::bit_cast<std::uint32_t>(image.depth[p]))
+          << "pixel " << p;
+    }
+    if (compression != ExrCompression::none) {
+      EXPECT_LT(std::filesystem::file_size(path), std::filesystem::file_size(dir / "none.exr"));
+    }
+  }
+}
+
+// Lines that do not get smaller (random bits in every channel) are stored uncompressed, as
+// OpenEXR's reader expects of such a block: the file is the size of the uncompressed one.
+TEST(ExrWrite, IncompressibleLinesAreStoredAsTheyAre) {
+  ScratchDir dir;
+  Framebuffer image(64, 3);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> values(-1000.0f, 1000.0f);
+  for (float& v : image.rgba) v = values(rng);
+  for (float& v : image.depth) v = values(rng);
+  for (ExrCompression compression : {ExrCompression::none, ExrCompression::rle}) {
+    const std::string path = dir / (std::string(exr_compression_info(compression).name) + ".exr");
+    ASSERT_TRUE(write_exr(image, path, compression).ok);
+    Imf::Header header;
+    const ExrChannels read = read_exr(path, header);
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      ASSERT_EQ(read.r[p], float(Imath::half(image.rgba[4 * p]))) << "pixel " << p;
+      ASSERT_EQ(read.z[p], image.depth[p]) << "pixel " << p;
+    }
+  }
+  EXPECT_EQ(std::filesystem::file_size(dir / "rle.exr"),
+            std::filesystem::file_size(dir / "none.exr"));
 }
 
 // Both formats encoded at once, in an arena of several threads, give the same bytes as each
