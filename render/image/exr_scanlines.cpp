@@ -13,6 +13,7 @@
 #include <libdeflate.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -183,9 +184,13 @@ void put_u32(std::vector<unsigned char>& out, std::uint32_t v) {
   for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<unsigned char>(v >> shift));
 }
 
-void put_u64(std::vector<unsigned char>& out, std::uint64_t v) {
-  put_u32(out, static_cast<std::uint32_t>(v));
-  put_u32(out, static_cast<std::uint32_t>(v >> 32));
+void put_u64_at(unsigned char* at, std::uint64_t v) {
+  for (int k = 0; k < 8; ++k) at[k] = static_cast<unsigned char>(v >> (8 * k));
+}
+
+std::uint32_t u32_at(const unsigned char* at) {
+  return std::uint32_t{at[0]} | std::uint32_t{at[1]} << 8 | std::uint32_t{at[2]} << 16 |
+         std::uint32_t{at[3]} << 24;
 }
 
 // The compressed data of one block, or empty where it would not be smaller than `in`.
@@ -290,38 +295,43 @@ bool exr_scanlines_write(ExrCompression compression) {
 void encode_exr_scanlines(const Framebuffer& image, ExrCompression compression,
                           std::vector<unsigned char>& bytes) {
   const int lines = lines_per_block(compression);
-  const int groups = (image.height + kLinesPerGroup - 1) / kLinesPerGroup;
-  // Each group of lines into its own bytes, with the sizes of its blocks for the offset table.
-  std::vector<std::vector<unsigned char>> group_bytes(static_cast<std::size_t>(groups));
-  std::vector<std::vector<std::size_t>> block_sizes(static_cast<std::size_t>(groups));
-  tbb::enumerable_thread_specific<Scratch> scratch;
-  tbb::parallel_for(0, groups, [&](int g) {
-    Scratch& s = scratch.local();
-    std::vector<unsigned char>& out = group_bytes[static_cast<std::size_t>(g)];
-    const int end = std::min(image.height, (g + 1) * kLinesPerGroup);
-    out.reserve(static_cast<std::size_t>(end - g * kLinesPerGroup) *
-                (kBytesPerPixel * static_cast<std::size_t>(image.width) + 8));
-    for (int first = g * kLinesPerGroup; first < end; first += lines) {
-      const std::size_t before = out.size();
-      put_block(image, first, std::min(end, first + lines), compression, s, out);
-      block_sizes[static_cast<std::size_t>(g)].push_back(out.size() - before);
-    }
-  });
-
-  put_header(bytes, image.width, image.height, compression);
   const std::size_t blocks = static_cast<std::size_t>((image.height + lines - 1) / lines);
-  std::size_t offset = bytes.size() + 8 * blocks;
-  std::size_t total = 0;
-  for (const std::vector<unsigned char>& g : group_bytes) total += g.size();
-  bytes.reserve(offset + total);
-  for (const std::vector<std::size_t>& sizes : block_sizes) {
-    for (std::size_t size : sizes) {
-      put_u64(bytes, offset);
-      offset += size;
+  put_header(bytes, image.width, image.height, compression);
+  const std::size_t table = bytes.size();
+  // Room for the offset table and every block uncompressed (the most a block takes): the bytes
+  // never move, and the pages never written are never touched.
+  bytes.reserve(table + 8 * blocks +
+                static_cast<std::size_t>(image.height) *
+                    (kBytesPerPixel * static_cast<std::size_t>(image.width) + 8));
+  bytes.resize(table + 8 * blocks);
+
+  // The groups of lines are compressed a batch at a time into buffers that the next batch
+  // reuses, then appended in order: new memory (and its page faults, which cost about as much as
+  // compressing) only for the file itself and one batch, not for a second copy of the file.
+  const int groups = (image.height + kLinesPerGroup - 1) / kLinesPerGroup;
+  const int batch = std::min(groups, 4 * tbb::this_task_arena::max_concurrency());
+  std::vector<std::vector<unsigned char>> staged(static_cast<std::size_t>(batch));
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  std::size_t block = 0;
+  for (int first_group = 0; first_group < groups; first_group += batch) {
+    const int last_group = std::min(groups, first_group + batch);
+    tbb::parallel_for(first_group, last_group, [&](int g) {
+      std::vector<unsigned char>& out = staged[static_cast<std::size_t>(g - first_group)];
+      out.clear();
+      const int end = std::min(image.height, (g + 1) * kLinesPerGroup);
+      for (int first = g * kLinesPerGroup; first < end; first += lines) {
+        put_block(image, first, std::min(end, first + lines), compression, scratch.local(), out);
+      }
+    });
+    for (int g = first_group; g < last_group; ++g) {
+      const std::vector<unsigned char>& out = staged[static_cast<std::size_t>(g - first_group)];
+      // Each block: y, byte count, data (put_block).
+      for (std::size_t at = 0; at < out.size(); at += 8 + u32_at(&out[at + 4])) {
+        put_u64_at(&bytes[table + 8 * block++], bytes.size() + at);
+      }
+      bytes.insert(bytes.end(), out.begin(), out.end());
     }
   }
-  for (const std::vector<unsigned char>& g : group_bytes)
-    bytes.insert(bytes.end(), g.begin(), g.end());
 }
 
 }  // namespace tetray::render
