@@ -8,8 +8,7 @@
 // get smaller is stored uncompressed, as OpenEXR's reader expects.
 #include "render/image/exr_scanlines.hpp"
 
-#include <Imath/half.h>
-#include <immintrin.h>
+#include <emmintrin.h>
 #include <libdeflate.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +18,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <new>
 #include <span>
@@ -38,28 +38,49 @@ int lines_per_block(ExrCompression compression) {
 
 // ------------------------------------------------------------------------------ half conversion
 
-// F16C converts with IEEE round to nearest even, as Imath's half(float) does (Imath itself uses
-// F16C when compiled for it): the halves are the same either way.
-__attribute__((target("avx,f16c"))) void halves_f16c(const float* in, std::size_t n,
-                                                     std::uint16_t* out) {
+// Four floats to halves with IEEE round to nearest even, as Imath's half(float) (whose F16C form
+// the render libraries cannot use: only the ISA variants may hold AVX encodings, and F16C has no
+// other), in SSE2: a magnitude from 2^16 on becomes infinity or a quiet NaN, one below 2^-14 a
+// subnormal rounded by a float addition that aligns its bits, any other gets its exponent
+// rebiased and 13 mantissa bits rounded off (F. Giesen, "float->half variants", 2013). Each
+// lane holds the half, sign-extended, so that packing pairs to 16 bits keeps it.
+__m128i halves4(__m128 value) {
+  const __m128 sign =
+      _mm_and_ps(value, _mm_castsi128_ps(_mm_set1_epi32(std::numeric_limits<std::int32_t>::min())));
+  const __m128 magnitude = _mm_xor_ps(value, sign);
+  const __m128i bits = _mm_castps_si128(magnitude);
+  const __m128i subnormal_magic = _mm_set1_epi32((127 - 15 + 23 - 10 + 1) << 23);
+
+  const __m128i nan = _mm_castps_si128(_mm_cmpunord_ps(magnitude, magnitude));
+  const __m128i special = _mm_or_si128(_mm_and_si128(nan, _mm_set1_epi32(0x200)),
+                                       _mm_set1_epi32(0x7c00));  // infinity or quiet NaN
+  const __m128i regular = _mm_cmpgt_epi32(_mm_set1_epi32((127 + 16) << 23), bits);
+  const __m128i subnormal = _mm_cmpgt_epi32(_mm_set1_epi32((127 - 14) << 23), bits);
+
+  const __m128i small = _mm_sub_epi32(
+      _mm_castps_si128(_mm_add_ps(magnitude, _mm_castsi128_ps(subnormal_magic))), subnormal_magic);
+  const __m128i odd = _mm_srai_epi32(_mm_slli_epi32(bits, 31 - 13), 31);  // -1 where LSB kept is 1
+  const __m128i normal = _mm_srli_epi32(
+      _mm_sub_epi32(_mm_add_epi32(bits, _mm_set1_epi32(0xfff - ((127 - 15) << 23))), odd), 13);
+
+  const __m128i finite =
+      _mm_or_si128(_mm_and_si128(subnormal, small), _mm_andnot_si128(subnormal, normal));
+  const __m128i half =
+      _mm_or_si128(_mm_and_si128(regular, finite), _mm_andnot_si128(regular, special));
+  return _mm_or_si128(half, _mm_srai_epi32(_mm_castps_si128(sign), 16));
+}
+
+// `n` (a multiple of 4) floats to halves.
+void to_halves(const float* in, std::size_t n, std::uint16_t* out) {
   std::size_t k = 0;
   for (; k + 8 <= n; k += 8) {
-    const __m128i h = _mm256_cvtps_ph(_mm256_loadu_ps(in + k), _MM_FROUND_TO_NEAREST_INT);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k), h);
+    const __m128i low = halves4(_mm_loadu_ps(in + k)), high = halves4(_mm_loadu_ps(in + k + 4));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k), _mm_packs_epi32(low, high));
   }
-  for (; k < n; ++k) out[k] = _cvtss_sh(in[k], _MM_FROUND_TO_NEAREST_INT);
-}
-
-void halves_imath(const float* in, std::size_t n, std::uint16_t* out) {
-  for (std::size_t k = 0; k < n; ++k) out[k] = Imath::half(in[k]).bits();
-}
-
-using HalvesFunction = void (*)(const float*, std::size_t, std::uint16_t*);
-
-HalvesFunction halves_function() {
-  __builtin_cpu_init();
-  const bool f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
-  return f16c ? halves_f16c : halves_imath;
+  if (k < n) {
+    const __m128i last = _mm_packs_epi32(halves4(_mm_loadu_ps(in + k)), _mm_setzero_si128());
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), last);
+  }
 }
 
 // ---------------------------------------------------------------------------- line block bytes
@@ -69,7 +90,6 @@ HalvesFunction halves_function() {
 // byte is even and its high byte odd; a float's bytes go even, odd, even, odd.
 void split_line(const Framebuffer& image, int y, std::uint16_t* halves, std::uint8_t* even,
                 std::uint8_t* odd) {
-  static const HalvesFunction to_halves = halves_function();
   const std::size_t w = static_cast<std::size_t>(image.width);
   to_halves(&image.rgba[4 * w * static_cast<std::size_t>(y)], 4 * w, halves);
   for (std::size_t q = 0; q < 4; ++q) {  // A, B, G, R: the framebuffer's channels 3, 2, 1, 0
@@ -109,8 +129,9 @@ void predict(std::span<const std::uint8_t> in, std::uint8_t* out) {
 
 // ------------------------------------------------------------------------------------------ RLE
 
-// RLE scans 16 bytes at a time (SSE2, which every x86-64 CPU has): the run-length stage is most
-// of an RLE file's encoding time, and a rendered frame is mostly short literals between runs.
+// RLE scans 16 bytes at a time (SSE2, which every x86-64 CPU has, as halves4 uses): the run-length
+// stage is most of an RLE file's encoding time, and a rendered frame is mostly short literals
+// between runs.
 std::uint32_t equal_bytes(const std::uint8_t* a, __m128i b) {
   const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
   return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, b)));

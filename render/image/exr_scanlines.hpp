@@ -2,8 +2,8 @@
 // documentation's "OpenEXR File Layout"), for the lossless compressions the writer uses every
 // step: none, RLE, ZIPS and ZIP. OpenEXR's own OutputFile spends most of its time copying the
 // frame buffer through its generic slices and in its byte-at-a-time RLE (README, "Encoding");
-// here the line blocks are built straight from the framebuffer, the halves converted by the
-// CPU's F16C instructions where present, and ZIP's zlib stream compressed by libdeflate. The
+// here the line blocks are built straight from the framebuffer, the halves converted four at a
+// time (SSE2), RLE scanned 16 bytes at a time and ZIP's zlib stream compressed by libdeflate. The
 // files are the same format as OpenEXR's (same header attributes, channels and line blocks),
 // read by any OpenEXR reader; the other compressions go through OpenEXR (exr_encode.cpp).
 #pragma once

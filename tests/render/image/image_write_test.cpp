@@ -235,6 +235,45 @@ TEST(ExrWrite, TetrayLineBlocksDecodeExactly) {
   }
 }
 
+// Every float becomes the half Imath's half(float) gives (round to nearest even, overflow to
+// infinity, subnormals, signs): midpoints between neighbouring halves (the ties), then random
+// finite float bits of every exponent; rows of 257 pixels end in four floats, the tail that the
+// conversion (eight at a time) handles apart.
+TEST(ExrWrite, HalvesRoundAsImathRounds) {
+  ScratchDir dir;
+  Framebuffer image(257, 64);
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<std::uint32_t> bits;
+  for (std::size_t k = 0; k < image.rgba.size(); ++k) {
+    float& v = image.rgba[k];
+    if (k < 0x10000) {  // each half pattern's upper midpoint, in order
+      Imath::half below;
+      below.setBits(static_cast<std::uint16_t>(k));
+      Imath::half above;
+      above.setBits(static_cast<std::uint16_t>(k + 1));
+      v = below.isFinite() && above.isFinite() && (k & 0x7fff) != 0x7fff
+              ? (float(below) + float(above)) / 2
+              : float(k);
+      continue;
+    }
+    do v = std::bit_cast<float>(bits(rng));
+    while (!std::isfinite(v));
+  }
+  const std::string path = dir / "halves.exr";
+  ASSERT_TRUE(write_exr(image, path, ExrCompression::rle).ok);
+  Imf::Header header;
+  const ExrChannels read = read_exr(path, header);
+  const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    for (int c = 0; c < 4; ++c) {
+      const float original = image.rgba[4 * p + c];
+      ASSERT_EQ(std::bit_cast<std::uint32_t>((*rgba[c])[p]),
+                std::bit_cast<std::uint32_t>(float(Imath::half(original))))
+          << "value " << 4 * p + c << ": " << original;
+    }
+  }
+}
+
 // Lines that do not get smaller (random bits in every half and every depth, no NaN or infinity)
 // are stored uncompressed, as OpenEXR's reader expects of such a block: the RLE and ZIPS files are
 // the size of the uncompressed one.
