@@ -1,7 +1,9 @@
 // EXR encoding of docs/architecture.md §3: R, G, B, A as half (linear, premultiplied: EXR's own
 // convention) and Z as float (view-axis depth, +inf for background), scanline, in any of
 // OpenEXR 3.1's compressions (exr_compression.cpp). Encoded into memory so that the file itself is
-// written atomically by write_file_atomically.
+// written atomically by write_file_atomically. The lossless compressions of one or 16 lines
+// (none, RLE, ZIPS, ZIP) are assembled by tetray (exr_scanlines.cpp: several times faster than
+// OpenEXR's OutputFile); the others (PIZ and the lossy ones) by OpenEXR.
 #include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -14,6 +16,7 @@
 #include <cstring>
 #include <exception>
 
+#include "render/image/exr_scanlines.hpp"
 #include "render/image/image_check.hpp"
 #include "render/image/image_write.hpp"
 
@@ -50,8 +53,7 @@ class MemoryStream final : public Imf::OStream {
 Imf::Header exr_header(int width, int height, ExrCompression compression) {
   Imf::Header header(width, height);
   header.compression() = static_cast<Imf::Compression>(compression);
-  // zlib's fastest level (ZIP, ZIPS): about 30% less encoding time than OpenEXR's default (4) for
-  // files about 5% larger on the gyroid scene; images are written every few solver steps.
+  // zlib's fastest level for the zlib stage of DWAA and DWAB, as exr_scanlines.cpp uses for ZIP.
   header.zipCompressionLevel() = 1;
   for (const char* name : {"R", "G", "B", "A"}) {
     header.channels().insert(name, Imf::Channel(Imf::HALF));
@@ -104,7 +106,11 @@ EncodedImage encode_exr(const Framebuffer& image, ExrCompression compression) {
   encoded.error = framebuffer_problem(image);
   if (!encoded.ok()) return encoded;
   try {
-    encode_into(image, compression, encoded.bytes);
+    if (exr_scanlines_write(compression)) {
+      encode_exr_scanlines(image, compression, encoded.bytes);
+    } else {
+      encode_into(image, compression, encoded.bytes);
+    }
   } catch (const std::exception& e) {
     encoded.bytes.clear();
     encoded.error = std::string("EXR encoding failed: ") + e.what();

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <span>
 
 #include "render/image/image_check.hpp"
 #include "render/image/image_write.hpp"
@@ -29,26 +30,37 @@ namespace {
 constexpr std::uint8_t kFilterNone = 0, kFilterUp = 2;
 
 // The filtered scanlines, each a filter byte and 4 * width bytes: the data the zlib stream holds.
-std::vector<std::uint8_t> filtered_rows(const Framebuffer& image, bool filter_up) {
+// Each task converts its rows (and the row above them, which "up" subtracts) to sRGB in a buffer
+// of its own and filters them from there: no sRGB copy of the whole image is made, and the rows
+// are not zeroed before they are written.
+struct FilteredRows {
+  std::unique_ptr<std::uint8_t[]> bytes;
+  std::size_t size = 0;
+};
+
+FilteredRows filtered_rows(const Framebuffer& image, bool filter_up) {
   const std::size_t width = static_cast<std::size_t>(image.width);
   const std::size_t row_bytes = 1 + 4 * width;
-  const std::size_t height = static_cast<std::size_t>(image.height);
-  const std::vector<std::uint8_t> srgb = to_srgb8(image, Srgb8Alpha::straight);
-  std::vector<std::uint8_t> rows(row_bytes * height);
-  constexpr std::size_t kRowsPerTask = 16;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, height, kRowsPerTask), [&](const auto& r) {
-    for (std::size_t j = r.begin(); j < r.end(); ++j) {
-      std::uint8_t* out = &rows[row_bytes * j];
-      const std::uint8_t* now = &srgb[4 * width * j];
+  FilteredRows rows{std::make_unique_for_overwrite<std::uint8_t[]>(row_bytes * image.height),
+                    row_bytes * static_cast<std::size_t>(image.height)};
+  constexpr int kRowsPerTask = 16;
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, kRowsPerTask), [&](const auto& r) {
+    // A local copy: the byte stores below could alias the captured width, which would then be
+    // reloaded per byte and keep the loop from being vectorized.
+    const std::size_t n = 4 * width;
+    const int first = filter_up ? std::max(r.begin() - 1, 0) : r.begin();
+    std::vector<std::uint8_t> srgb(n * static_cast<std::size_t>(r.end() - first));
+    to_srgb8_rows(image, first, r.end(), Srgb8Alpha::straight, srgb.data());
+    for (int j = r.begin(); j < r.end(); ++j) {
+      std::uint8_t* out = &rows.bytes[(n + 1) * static_cast<std::size_t>(j)];
+      const std::uint8_t* now = &srgb[n * static_cast<std::size_t>(j - first)];
       out[0] = filter_up ? kFilterUp : kFilterNone;
       if (!filter_up || j == 0) {  // "up" over the row above the image, which is all zero
-        std::copy(now, now + 4 * width, out + 1);
+        std::copy(now, now + n, out + 1);
         continue;
       }
-      const std::uint8_t* above = now - 4 * width;
-      for (std::size_t k = 0; k < 4 * width; ++k) {
-        out[1 + k] = static_cast<std::uint8_t>(now[k] - above[k]);
-      }
+      const std::uint8_t* above = now - n;
+      for (std::size_t k = 0; k < n; ++k) out[1 + k] = static_cast<std::uint8_t>(now[k] - above[k]);
     }
   });
   return rows;
@@ -97,13 +109,16 @@ void put_color_space(std::vector<unsigned char>& out) {
 }
 
 void encode_into(const Framebuffer& image, int compression_level, EncodedImage& encoded) {
-  const std::vector<std::uint8_t> rows = filtered_rows(image, compression_level > 0);
+  const FilteredRows rows = filtered_rows(image, compression_level > 0);
   const std::unique_ptr<libdeflate_compressor, CompressorDeleter> compressor(
       libdeflate_alloc_compressor(compression_level));
   if (!compressor) throw std::bad_alloc();
-  std::vector<unsigned char> stream(libdeflate_zlib_compress_bound(compressor.get(), rows.size()));
-  stream.resize(libdeflate_zlib_compress(compressor.get(), rows.data(), rows.size(), stream.data(),
-                                         stream.size()));
+  // Not zeroed: the bound is about the rows' size, the stream mostly a tenth of it.
+  const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), rows.size);
+  const auto buffer = std::make_unique_for_overwrite<unsigned char[]>(bound);
+  const std::span<const unsigned char> stream(
+      buffer.get(),
+      libdeflate_zlib_compress(compressor.get(), rows.bytes.get(), rows.size, buffer.get(), bound));
   if (stream.empty() || stream.size() > 0x7fffffffu) {  // a chunk holds at most 2^31 - 1 bytes
     encoded.error = "PNG encoding failed: the compressed image exceeds one PNG chunk";
     return;

@@ -52,6 +52,11 @@ void straight_pixel(const SrgbEncoder& encoder, const float* rgba, std::uint8_t*
     std::fill(out, out + 4, std::uint8_t{0});  // fully transparent: 0, 0, 0, 0
     return;
   }
+  if (alpha == 1.0) {  // opaque, as surfaces mostly are: dividing by 1 changes nothing
+    for (int c = 0; c < 3; ++c) out[c] = encoder.code(unit_interval(rgba[c]));
+    out[3] = 255;
+    return;
+  }
   for (int c = 0; c < 3; ++c) out[c] = encoder.code(unit_interval(rgba[c] / alpha));
   out[3] = static_cast<std::uint8_t>(std::lround(alpha * 255.0));
 }

@@ -1,6 +1,7 @@
 // EXR and PNG files read back with the libraries' own readers and compared with the framebuffer
 // (EXR: half rounding, depth exact; PNG: the sRGB formula evaluated here independently), and
 // failed writes that must leave no temporary file and no damaged image.
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
@@ -11,6 +12,7 @@
 #include <sys/resource.h>
 #include <tbb/task_arena.h>
 
+#include <bit>
 #include <cmath>
 #include <csignal>
 #include <fstream>
@@ -162,6 +164,157 @@ TEST(ExrWrite, CompressionNamesRoundTrip) {
   }
   EXPECT_EQ(exr_compression_named("ZIP"), std::nullopt);
   EXPECT_EQ(exr_compression_named("deflate"), std::nullopt);
+}
+
+// What a rendered frame holds, for the line blocks tetray assembles (none, RLE, ZIPS, ZIP): rows
+// of background, flat spans longer than one RLE code (128 bytes), short runs and noise, and the
+// half's edges (smallest subnormal, a tie, the largest half, the first float that rounds to
+// infinity, -0); 19 lines, so the last ZIP block is short.
+Framebuffer rendered_like_image() {
+  Framebuffer image = random_image(301, 19, 7);
+  for (int y = 0; y < 5; ++y) {  // background rows
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t p = image.index(x, y);
+      std::fill_n(&image.rgba[4 * p], 4, 0.0f);
+      image.depth[p] = std::numeric_limits<float>::infinity();
+    }
+  }
+  for (int x = 10; x < 250; ++x) {  // one flat span
+    const std::size_t p = image.index(x, 8);
+    image.rgba[4 * p + 0] = 0.25f, image.rgba[4 * p + 1] = 0.5f, image.rgba[4 * p + 2] = 0.125f;
+    image.rgba[4 * p + 3] = 1.0f;
+    image.depth[p] = 3.5f;
+  }
+  const float edges[] = {std::ldexp(1.0f, -24),
+                         std::ldexp(3.0f, -25),
+                         1.0f + std::ldexp(1.0f, -11),
+                         65504.0f,
+                         65520.0f,
+                         -0.0f,
+                         1e-9f,
+                         70000.0f};
+  for (std::size_t k = 0; k < std::size(edges); ++k) {
+    image.rgba[4 * image.index(static_cast<int>(k), 12)] = edges[k];
+  }
+  return image;
+}
+
+// Read back with OpenEXR, every value is exactly Imath's half of the framebuffer's (RGBA) and
+// the framebuffer's float (Z), for every compression tetray writes itself, on four threads.
+TEST(ExrWrite, TetrayLineBlocksDecodeExactly) {
+  ScratchDir dir;
+  const Framebuffer image = rendered_like_image();
+  for (ExrCompression compression :
+       {ExrCompression::none, ExrCompression::rle, ExrCompression::zips, ExrCompression::zip}) {
+    const std::string name(exr_compression_info(compression).name);
+    SCOPED_TRACE(name);
+    const std::string path = dir / (name + ".exr");
+    WriteResult result;
+    tbb::task_arena(4).execute([&] { result = write_exr(image, path, compression); });
+    ASSERT_TRUE(result.ok) << result.message;
+    Imf::Header header;
+    const ExrChannels read = read_exr(path, header);
+    EXPECT_EQ(static_cast<int>(header.compression()), static_cast<int>(compression));
+    ASSERT_EQ(read.width, image.width);
+    ASSERT_EQ(read.height, image.height);
+    const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      for (int c = 0; c < 4; ++c) {
+        const float expected = Imath::half(image.rgba[4 * p + c]);
+        ASSERT_EQ(std::bit_cast<std::uint32_t>((*rgba[c])[p]),
+                  std::bit_cast<std::uint32_t>(expected))
+            << "pixel " << p << " channel " << c << ": " << image.rgba[4 * p + c];
+      }
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(read.z[p]),
+                std::bit_cast<std::uint32_t>(image.depth[p]))
+          << "pixel " << p;
+    }
+    if (compression != ExrCompression::none) {
+      EXPECT_LT(std::filesystem::file_size(path), std::filesystem::file_size(dir / "none.exr"));
+    }
+  }
+}
+
+// Every float becomes the half Imath's half(float) gives (round to nearest even, overflow to
+// infinity, subnormals, signs): midpoints between neighbouring halves (the ties), then random
+// finite float bits of every exponent; rows of 257 pixels end in four floats, the tail that the
+// conversion (eight at a time) handles apart.
+TEST(ExrWrite, HalvesRoundAsImathRounds) {
+  ScratchDir dir;
+  Framebuffer image(257, 64);
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<std::uint32_t> bits;
+  for (std::size_t k = 0; k < image.rgba.size(); ++k) {
+    float& v = image.rgba[k];
+    if (k < 0x10000) {  // each half pattern's upper midpoint, in order
+      Imath::half below;
+      below.setBits(static_cast<std::uint16_t>(k));
+      Imath::half above;
+      above.setBits(static_cast<std::uint16_t>(k + 1));
+      v = below.isFinite() && above.isFinite() && (k & 0x7fff) != 0x7fff
+              ? (float(below) + float(above)) / 2
+              : float(k);
+      continue;
+    }
+    do v = std::bit_cast<float>(bits(rng));
+    while (!std::isfinite(v));
+  }
+  const std::string path = dir / "halves.exr";
+  ASSERT_TRUE(write_exr(image, path, ExrCompression::rle).ok);
+  Imf::Header header;
+  const ExrChannels read = read_exr(path, header);
+  const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    for (int c = 0; c < 4; ++c) {
+      const float original = image.rgba[4 * p + c];
+      ASSERT_EQ(std::bit_cast<std::uint32_t>((*rgba[c])[p]),
+                std::bit_cast<std::uint32_t>(float(Imath::half(original))))
+          << "value " << 4 * p + c << ": " << original;
+    }
+  }
+}
+
+// Lines that do not get smaller (random bits in every half and every depth, no NaN or infinity)
+// are stored uncompressed, as OpenEXR's reader expects of such a block: the RLE and ZIPS files are
+// the size of the uncompressed one.
+TEST(ExrWrite, IncompressibleLinesAreStoredAsTheyAre) {
+  ScratchDir dir;
+  Framebuffer image(64, 20);
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<std::uint32_t> bits;
+  for (float& v : image.rgba) {
+    Imath::half h;
+    do h.setBits(static_cast<std::uint16_t>(bits(rng)));
+    while (!h.isFinite());
+    v = h;
+  }
+  for (float& v : image.depth) {
+    do v = std::bit_cast<float>(bits(rng));
+    while (!std::isfinite(v));
+  }
+  for (ExrCompression compression :
+       {ExrCompression::none, ExrCompression::rle, ExrCompression::zips, ExrCompression::zip}) {
+    const std::string name(exr_compression_info(compression).name);
+    SCOPED_TRACE(name);
+    const std::string path = dir / (name + ".exr");
+    ASSERT_TRUE(write_exr(image, path, compression).ok);
+    Imf::Header header;
+    const ExrChannels read = read_exr(path, header);
+    const std::vector<float>* rgba[] = {&read.r, &read.g, &read.b, &read.a};
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      for (int c = 0; c < 4; ++c) ASSERT_EQ((*rgba[c])[p], image.rgba[4 * p + c]) << "pixel " << p;
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(read.z[p]),
+                std::bit_cast<std::uint32_t>(image.depth[p]))
+          << "pixel " << p;
+    }
+    // ZIP's 16-line blocks of these bytes (NaN and infinity left out) can shrink a little.
+    const std::uintmax_t uncompressed = std::filesystem::file_size(dir / "none.exr");
+    if (compression == ExrCompression::zip) {
+      EXPECT_LE(std::filesystem::file_size(path), uncompressed);
+    } else {
+      EXPECT_EQ(std::filesystem::file_size(path), uncompressed);
+    }
+  }
 }
 
 // Both formats encoded at once, in an arena of several threads, give the same bytes as each
