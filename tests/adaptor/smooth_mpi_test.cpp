@@ -2,7 +2,8 @@
 // per-vertex gradients of the tets split into slabs, each rank's exact partial sums combined
 // over the ranks that share a vertex, are bit for bit those of one rank holding every tet; and
 // the gyroid-twist scene, smooth, transparent, clipped and shadowed, rendered by all ranks gives
-// the PNG and EXR of rank 0 alone.
+// the PNG and EXR of rank 0 alone, at the first step and at a second one that moves the points
+// and changes the field.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -107,6 +108,25 @@ void render(MPI_Comm comm, const std::string& directory, const std::string& shad
   render_step_zero(comm, config(directory, shading), mesh, fields);
 }
 
+// Steps 0 and 1 of the twisting gyroid (t = 0.2, then 0.6: new coordinates and field on the
+// same topology, so step 1 refits and finds the shared vertices of step 0).
+void render_two_steps(MPI_Comm comm, const std::string& directory,
+                      const std::vector<std::int64_t>& tets) {
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, "smooth"), status);
+  ASSERT_TRUE(adaptor) << status.message;
+  std::vector<double> points = scene().mesh.points, field = scene().field;
+  for (int step = 0; step < 2; ++step) {
+    if (step == 1) deform_gyroid_twist(scene().mesh, 0.6, points, field);
+    const MeshView mesh{PointsView::of(std::span<const double>(points)),
+                        TetsView::of(std::span<const std::int64_t>(tets))};
+    const FieldView fields[] = {FieldView::of("f", std::span<const double>(field))};
+    const Changes changes{step == 1, step == 0, true};
+    ASSERT_TRUE(adaptor->execute(step, step, mesh, fields, changes).ok());
+  }
+  ASSERT_TRUE(adaptor->finalize().ok());
+}
+
 std::string bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};
@@ -132,6 +152,20 @@ TEST(SmoothAcrossRanks, SmoothShadingGivesTheImageOfOneRank) {
   EXPECT_TRUE(bytes(one + file + "exr") == bytes(split + file + "exr"))
       << "the EXR on " << world_size() << " ranks";
   EXPECT_GT(differing_pixels(whole, flat), whole.rgba.size() / 4 / 5) << "smooth must show";
+}
+
+TEST(SmoothAcrossRanks, ANewStepKeepsTheImageOfOneRank) {
+  const SharedDir shared("smooth_second_step");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  if (rank() == 0) render_two_steps(MPI_COMM_SELF, one, scene().mesh.tets);
+  render_two_steps(MPI_COMM_WORLD, split, x_slab(scene().mesh, rank(), world_size()).tets);
+  if (rank() != 0) return;
+  const std::string file = "/smooth/smooth_000001.";
+  EXPECT_FALSE(bytes(one + file + "png").empty());
+  EXPECT_TRUE(bytes(one + file + "png") == bytes(split + file + "png"))
+      << "on " << world_size() << " ranks";
+  EXPECT_TRUE(bytes(one + "/smooth/smooth_000000.png") != bytes(one + file + "png"))
+      << "step 1 must show the new step";
 }
 
 }  // namespace
