@@ -95,12 +95,11 @@ std::string SharedGradients::match(const render::TetVolume& volume, const Points
 std::string SharedGradients::compute(render::TetVolume& volume) const {
   std::vector<render::VertexExponents> exponents;
   std::vector<render::VertexSums> sums;
-  const render::GradientTerms terms = render::gradient_terms(volume);
-  render::gradient_exponents(terms, exponents);
+  render::gradient_exponents(volume, exponents);
   int rc = combine_shared(volume, points_, exponents,
                           [&](std::span<std::int16_t> values) { return shared_.max(values, 4); });
   if (rc != MPI_SUCCESS) return failed("exponents", rc);
-  render::gradient_sums(terms, exponents, sums);
+  render::gradient_sums(volume, exponents, sums);
   rc = combine_shared(volume, points_, sums,
                       [&](std::span<render::Int128> values) { return shared_.sum(values, 4); });
   if (rc != MPI_SUCCESS) return failed("sums", rc);

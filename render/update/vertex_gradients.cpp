@@ -4,9 +4,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
+#include <utility>
 
 namespace tetray::render {
 namespace {
@@ -17,7 +17,7 @@ Vec3d position(const Vertex& v) { return {v.x, v.y, v.z}; }
 // g = (df1 (b x c) + df2 (c x a) + df3 (a x b)) / det. Weighting by |det| cancels the division,
 // so flat tets add nothing instead of dividing by zero; a tet whose terms are not finite adds
 // nothing either.
-TetTerms tet_terms(const TetVolume& volume, const Tet& tet) {
+[[gnu::always_inline]] inline TetTerms tet_terms(const TetVolume& volume, const Tet& tet) {
   const Vertex* v[4];
   for (int k = 0; k < 4; ++k) v[k] = &volume.vertices[tet.v[k]];
   const Vec3d p0 = position(*v[0]);
@@ -58,84 +58,86 @@ std::int16_t exponent_of(double term) {
 }
 
 // The term in units of 2^(e - kTermBits), truncated toward zero: its mantissa shifted, so
-// exact integer arithmetic throughout. |term| < 2^e keeps the result below 2^kTermBits.
-Int128 quantized(double term, std::int16_t e) {
-  const Parts p = parts_of(term);
+// exact integer arithmetic throughout. |term| < 2^e keeps the result below 2^kTermBits; a zero
+// term (mantissa 0) gives 0 whatever the shift, even for a vertex whose e is kNoTerm.
+Int128 quantized(const Parts& p, std::int16_t e) {
   const int shift = p.exponent + kTermBits - e;
-  Int128 q = 0;
-  if (shift >= 0) {
-    q = static_cast<Int128>(p.mantissa) << shift;
-  } else if (shift > -64) {
-    q = static_cast<Int128>(p.mantissa >> -shift);
-  }
-  return p.negative ? -q : q;
+  const Int128 q = shift >= 0 ? static_cast<Int128>(p.mantissa) << std::min(shift, 127)
+                              : static_cast<Int128>(p.mantissa >> std::min(-shift, 63));
+  // The sign without a branch: terms of both signs interleave unpredictably.
+  const Int128 negative = -static_cast<Int128>(p.negative);
+  return (q ^ negative) - negative;
 }
 
-template <typename Body>
-void for_each_vertex(const GradientTerms& terms, Body&& body) {
-  const std::size_t count = terms.first.size() - 1;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const auto& block) {
-    for (std::size_t k = block.begin(); k != block.end(); ++k) {
-      body(k, std::span(terms.tets).subspan(terms.first[k], terms.first[k + 1] - terms.first[k]));
+// Calls add(k, prepare(terms)) for each tet's vertices k: what depends on the tet alone is
+// prepared once for its four vertices. In parallel over contiguous chunks of tets: chunk c owns
+// the vertices [first[c], first[c + 1]), first[c] being one past the largest vertex the chunks
+// before it use, so the ranges are disjoint; a chunk adds to its own vertices at once and keeps
+// the others' pairs, added after all chunks. The vertices are numbered in the tets' first-use
+// order, so few pairs wait; and the sums are exact, so the order of the adds changes nothing.
+template <typename Prepare, typename Add>
+void for_each_tet_vertex(const TetVolume& volume, Prepare&& prepare, Add&& add) {
+  using Prepared = decltype(prepare(TetTerms{}));
+  constexpr std::size_t kChunkTets = 1 << 14;
+  const std::size_t chunks = (volume.tets.size() + kChunkTets - 1) / kChunkTets;
+  const auto tets_of = [&](std::size_t c) {
+    return std::span(volume.tets)
+        .subspan(c * kChunkTets, std::min(kChunkTets, volume.tets.size() - c * kChunkTets));
+  };
+  std::vector<std::int32_t> first(chunks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::int32_t largest = -1;
+    for (const Tet& tet : tets_of(c))
+      for (const std::int32_t k : tet.v) largest = std::max(largest, k);
+    first[c + 1] = largest + 1;
+  });
+  for (std::size_t c = 1; c <= chunks; ++c) first[c] = std::max(first[c], first[c - 1]);
+  std::vector<std::vector<std::pair<std::int32_t, Prepared>>> waiting(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    for (const Tet& tet : tets_of(c)) {
+      const Prepared prepared = prepare(tet_terms(volume, tet));
+      for (const std::int32_t k : tet.v) {
+        if (k >= first[c]) {
+          add(k, prepared);
+        } else {
+          waiting[c].emplace_back(k, prepared);
+        }
+      }
     }
   });
+  for (const auto& pairs : waiting)
+    for (const auto& [k, prepared] : pairs) add(k, prepared);
 }
 
 }  // namespace
 
-GradientTerms gradient_terms(const TetVolume& volume) {
-  GradientTerms out;
-  const std::size_t tet_count = volume.tets.size();
-  out.tet.resize(tet_count);
-  out.first.assign(volume.vertices.size() + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tet_count), [&](const auto& block) {
-    for (std::size_t t = block.begin(); t != block.end(); ++t) {
-      out.tet[t] = tet_terms(volume, volume.tets[t]);
-      for (const std::int32_t k : volume.tets[t].v) {
-        std::atomic_ref<std::uint32_t>(out.first[k + 1]).fetch_add(1, std::memory_order_relaxed);
-      }
-    }
-  });
-  for (std::size_t k = 1; k < out.first.size(); ++k) out.first[k] += out.first[k - 1];
-  // Each vertex's tets in whatever order the threads add them: the sums are exact, so the
-  // order changes nothing.
-  std::vector<std::uint32_t> cursor(out.first.begin(), out.first.end() - 1);
-  out.tets.resize(out.first.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tet_count), [&](const auto& block) {
-    for (std::size_t t = block.begin(); t != block.end(); ++t) {
-      for (const std::int32_t k : volume.tets[t].v) {
-        const std::uint32_t slot =
-            std::atomic_ref<std::uint32_t>(cursor[k]).fetch_add(1, std::memory_order_relaxed);
-        out.tets[slot] = static_cast<std::uint32_t>(t);
-      }
-    }
-  });
-  return out;
+void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents) {
+  exponents.assign(volume.vertices.size(), {kNoTerm, kNoTerm, kNoTerm, kNoTerm});
+  for_each_tet_vertex(
+      volume,
+      [](const TetTerms& terms) {
+        VertexExponents e;
+        for (int c = 0; c < 4; ++c) e[c] = exponent_of(terms[c]);
+        return e;
+      },
+      [&](std::int32_t k, const VertexExponents& e) {
+        for (int c = 0; c < 4; ++c) exponents[k][c] = std::max(exponents[k][c], e[c]);
+      });
 }
 
-void gradient_exponents(const GradientTerms& terms, std::vector<VertexExponents>& exponents) {
-  exponents.resize(terms.first.size() - 1);
-  for_each_vertex(terms, [&](std::size_t k, std::span<const std::uint32_t> tets) {
-    VertexExponents e{kNoTerm, kNoTerm, kNoTerm, kNoTerm};
-    for (const std::uint32_t t : tets) {
-      for (int c = 0; c < 4; ++c) e[c] = std::max(e[c], exponent_of(terms.tet[t][c]));
-    }
-    exponents[k] = e;
-  });
-}
-
-void gradient_sums(const GradientTerms& terms, std::span<const VertexExponents> exponents,
+void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
                    std::vector<VertexSums>& sums) {
-  sums.resize(terms.first.size() - 1);
-  for_each_vertex(terms, [&](std::size_t k, std::span<const std::uint32_t> tets) {
-    VertexSums s{0, 0, 0, 0};
-    for (const std::uint32_t t : tets) {
-      for (int c = 0; c < 4; ++c) {
-        if (terms.tet[t][c] != 0) s[c] += quantized(terms.tet[t][c], exponents[k][c]);
-      }
-    }
-    sums[k] = s;
-  });
+  sums.assign(volume.vertices.size(), {0, 0, 0, 0});
+  for_each_tet_vertex(
+      volume,
+      [](const TetTerms& terms) {
+        std::array<Parts, 4> p;
+        for (int c = 0; c < 4; ++c) p[c] = parts_of(terms[c]);
+        return p;
+      },
+      [&](std::int32_t k, const std::array<Parts, 4>& p) {
+        for (int c = 0; c < 4; ++c) sums[k][c] += quantized(p[c], exponents[k][c]);
+      });
 }
 
 void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exponents,
@@ -156,11 +158,10 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
 }
 
 void compute_vertex_gradients(TetVolume& volume) {
-  const GradientTerms terms = gradient_terms(volume);
   std::vector<VertexExponents> exponents;
   std::vector<VertexSums> sums;
-  gradient_exponents(terms, exponents);
-  gradient_sums(terms, exponents, sums);
+  gradient_exponents(volume, exponents);
+  gradient_sums(volume, exponents, sums);
   gradients_from_sums(volume, exponents, sums);
 }
 

@@ -32,23 +32,15 @@ inline constexpr std::int16_t kNoTerm = std::numeric_limits<std::int16_t>::min()
 using VertexSums = std::array<Int128, 4>;
 inline constexpr int kTermBits = 96;
 
-// Each tet's terms (zero for a tet whose terms are not finite), and each vertex's tets:
-// vertex k's are tets[first[k], first[k + 1]), in no particular order (the sums are exact).
-// Built in parallel, so that both passes run in parallel over the vertices.
+// A tet's terms; zero for a tet whose terms are not finite.
 using TetTerms = std::array<double, 4>;
-struct GradientTerms {
-  std::vector<TetTerms> tet;         // parallel to TetVolume::tets
-  std::vector<std::uint32_t> first;  // vertices + 1 entries
-  std::vector<std::uint32_t> tets;
-};
-GradientTerms gradient_terms(const TetVolume& volume);
 
 // Pass 1: `exponents` gets one entry per vertex, from this rank's tets.
-void gradient_exponents(const GradientTerms& terms, std::vector<VertexExponents>& exponents);
+void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents);
 
 // Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids `exponents` set
 // (truncated toward zero: the grid is 2^-96 of the largest term, far below float precision).
-void gradient_sums(const GradientTerms& terms, std::span<const VertexExponents> exponents,
+void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
                    std::vector<VertexSums>& sums);
 
 // Fills volume.gradients from the sums: the gradient sum over the |det| sum (zero for a vertex

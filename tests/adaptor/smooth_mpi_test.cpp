@@ -154,6 +154,20 @@ TEST(SmoothAcrossRanks, SmoothShadingGivesTheImageOfOneRank) {
   EXPECT_GT(differing_pixels(whole, flat), whole.rgba.size() / 4 / 5) << "smooth must show";
 }
 
+TEST(SmoothAcrossRanks, ARankWithoutTetsChangesNothing) {
+  if (world_size() < 2) GTEST_SKIP() << "needs a rank with tets and one without";
+  const SharedDir shared("smooth_empty_rank");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  if (rank() == 0) render(MPI_COMM_SELF, one, "smooth", scene().mesh.tets);
+  const int last = world_size() - 1;
+  render(MPI_COMM_WORLD, split, "smooth",
+         rank() == last ? std::vector<std::int64_t>{} : x_slab(scene().mesh, rank(), last).tets);
+  if (rank() != 0) return;
+  const std::string file = "/smooth/smooth_000000.png";
+  EXPECT_FALSE(bytes(one + file).empty());
+  EXPECT_TRUE(bytes(one + file) == bytes(split + file)) << "on " << world_size() << " ranks";
+}
+
 TEST(SmoothAcrossRanks, ANewStepKeepsTheImageOfOneRank) {
   const SharedDir shared("smooth_second_step");
   const std::string one = shared.path() + "/one", split = shared.path() + "/split";
