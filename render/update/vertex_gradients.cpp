@@ -13,6 +13,9 @@ namespace {
 
 Vec3d position(const Vertex& v) { return {v.x, v.y, v.z}; }
 
+// A tet's terms (x, y, z of gradient x |det|, then |det|).
+using TetTerms = std::array<double, 4>;
+
 // The gradient solves [a; b; c] g = [df1, df2, df3] for the edge vectors a, b, c from vertex 0:
 // g = (df1 (b x c) + df2 (c x a) + df3 (a x b)) / det. Weighting by |det| cancels the division,
 // so flat tets add nothing instead of dividing by zero; a tet whose terms are not finite adds

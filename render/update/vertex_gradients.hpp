@@ -32,9 +32,6 @@ inline constexpr std::int16_t kNoTerm = std::numeric_limits<std::int16_t>::min()
 using VertexSums = std::array<Int128, 4>;
 inline constexpr int kTermBits = 96;
 
-// A tet's terms; zero for a tet whose terms are not finite.
-using TetTerms = std::array<double, 4>;
-
 // Pass 1: `exponents` gets one entry per vertex, from this rank's tets.
 void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents);
 
