@@ -41,6 +41,9 @@ std::uint64_t peak_rss_bytes() {
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
 }
 
+constexpr std::uint8_t kGradientsUpdated = 1;
+constexpr std::uint8_t kGradientsLoaded = 2;
+
 std::uint64_t count_zeros(const std::vector<std::uint8_t>& keep) {
   return static_cast<std::uint64_t>(std::count(keep.begin(), keep.end(), std::uint8_t{0}));
 }
@@ -66,6 +69,7 @@ Adaptor::Impl::Impl(Communicator comm, config::Config config)
   }
   skipped_.assign(volumes_.size(), 0);
   walks_.resize(volumes_.size());
+  shared_gradients_.resize(volumes_.size());
   skips_.resize(scenes_.size());
   ranges_.scenes.resize(scenes_.size());
 }
@@ -181,6 +185,7 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   if (!ranges_.points.empty()) origin_ = 0.5 * (ranges_.points.lo() + ranges_.points.hi());
   ranges_.clear();
   status = guarded("BVH update", [&] { return update_volumes(tet_mesh, fields); });
+  status = share_gradients(tet_mesh, status);
   if (status.ok())
     status = guarded("bounds and color ranges", [&] { return global_inputs(fields); });
   status = agree(comm_, status, &ranges_);
@@ -359,6 +364,7 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
 
 Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const FieldView> fields) {
   render::BvhUpdateKind strongest = render::BvhUpdateKind::none;
+  gradient_changes_.assign(volumes_.size(), 0);
   for (std::size_t v = 0; v < volumes_.size(); ++v) {
     SceneState* first = first_due_scene(v);
     if (first == nullptr) continue;
@@ -369,9 +375,11 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
     render::UpdatePolicy policy = config_.bvh;
-    policy.vertex_gradients = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
-      return s.volume == v && s.config.shading.smooth;
-    });
+    // On several ranks the gradients wait for the other ranks' sums (share_gradients).
+    const bool smooth = smooth_volume(v);
+    policy.vertex_gradients = smooth && comm_.size == 1;
+    if (smooth)
+      gradient_changes_[v] = volume.needs_load(epochs_) ? kGradientsLoaded : kGradientsUpdated;
     policy.node_planes = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
       return s.volume == v && s.config.lod_node_pixels > 0;
     });
@@ -383,6 +391,47 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
   }
   bvh_decision_ = render::to_string(strongest);
   return Status::success();
+}
+
+bool Adaptor::Impl::smooth_volume(std::size_t v) const {
+  return std::any_of(scenes_.begin(), scenes_.end(),
+                     [&](const SceneState& s) { return s.volume == v && s.config.shading.smooth; });
+}
+
+// A rank whose tets share a vertex with another rank's sees only its own tets there, so the
+// exact partial sums are combined over the ranks (shared_gradients.hpp). Every rank takes part
+// when any rank's volume changed, and none when any rank's update failed (the agreement that
+// follows reports it).
+Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
+  if (comm_.size == 1) return updated;
+  std::vector<std::size_t> smooth;
+  for (std::size_t v = 0; v < volumes_.size(); ++v) {
+    if (smooth_volume(v) && first_due_scene(v) != nullptr) smooth.push_back(v);
+  }
+  if (smooth.empty()) return updated;
+  std::vector<std::uint8_t> changes = gradient_changes_;
+  changes.push_back(updated.ok() ? 0 : 1);
+  const int rc = MPI_Allreduce(MPI_IN_PLACE, changes.data(), static_cast<int>(changes.size()),
+                               MPI_UINT8_T, MPI_BOR, comm_.comm);
+  if (rc != MPI_SUCCESS) {
+    return {StatusCode::mpi_error, "smooth shading: agreeing on changes: " + mpi_error_text(rc)};
+  }
+  if (changes.back() != 0) return updated;
+  return guarded("smooth shading", [&]() -> Status {
+    for (std::size_t v : smooth) {
+      if (changes[v] == 0) continue;
+      const render::Stopwatch watch;
+      render::TetVolume& volume = volumes_[v].volume();
+      std::string error;
+      if (changes[v] & kGradientsLoaded) {
+        error = shared_gradients_[v].match(volume, mesh.points, comm_.comm);
+      }
+      if (error.empty()) error = shared_gradients_[v].compute(volume);
+      if (!error.empty()) return {StatusCode::mpi_error, std::move(error)};
+      first_due_scene(v)->record.bvh_ms += watch.ms();
+    }
+    return Status::success();
+  });
 }
 
 Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {

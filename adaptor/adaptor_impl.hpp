@@ -22,6 +22,7 @@
 #include "render/core/framebuffer.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/trace/trace.hpp"
+#include "shared_gradients.hpp"
 #include "step_record.hpp"
 #include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
@@ -91,6 +92,10 @@ class Adaptor::Impl {
   void drop_skipped_scenes();
   Status skipped_status() const;
   Status update_volumes(const MeshView& mesh, std::span<const FieldView> fields);
+  // Smooth shading's gradients of the volumes split over ranks, after `updated` (the update's
+  // outcome on this rank). Collective when some due scene is smooth and there are several ranks.
+  Status share_gradients(const MeshView& mesh, Status updated);
+  bool smooth_volume(std::size_t v) const;
   Status global_inputs(std::span<const FieldView> fields);
   Status trace_scenes(std::span<const FieldView> fields);
   Status write_rank_images();
@@ -125,7 +130,11 @@ class Adaptor::Impl {
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
-  std::vector<WalkCache> walks_;        // per volume, built for volume scenes only
+  std::vector<WalkCache> walks_;                   // per volume, built for volume scenes only
+  std::vector<SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
+  // Per volume, this step's update on this rank: kGradientsUpdated or kGradientsLoaded (a new
+  // topology or set of rendered tets, so new shared vertices), for smooth volumes only.
+  std::vector<std::uint8_t> gradient_changes_;
   std::vector<std::uint64_t> skipped_;  // per volume, at its last check
   SceneSkips skips_;                    // per scene, this step
   ChangeEpochs epochs_{};

@@ -5,7 +5,7 @@
 // nearest layers, the fragment compositor the nearest of all, and each layer is shadowed at its
 // own hit point. The transparency and the shadows show (the image differs from the opaque and
 // the unshadowed one), and a scene whose opacities are all 1 writes the very bytes of one
-// without the keys. Flat shading: smooth normals are not exact across ranks (README).
+// without the keys. Smooth shading across ranks: smooth_mpi_test.cpp.
 #include <gtest/gtest.h>
 #include <mpi.h>
 

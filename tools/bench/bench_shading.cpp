@@ -5,9 +5,10 @@
 #include <functional>
 #include <vector>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/trace/shadow_rays.hpp"
+#include "render/update/vertex_gradients.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "tools/bench_common/json_file.hpp"
 
 namespace tetray::bench {
@@ -57,11 +58,12 @@ ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& c
       render::apply_shadows(image, terms, occluded);
     });
   };
+  const auto gradients = [&] { return time_ms([&] { render::compute_vertex_gradients(volume); }); };
   frame(plain)();  // warm-up
-  const std::array<double, 4> best = best_in_turn_ms<4>(
-      kRepetitions,
-      {frame(plain), std::function<double()>(shadowed_frame), frame(clipped), frame(smooth)});
-  ShadingFigures figures{best[0], best[1], best[2], best[3], 0};
+  const std::array<double, 5> best = best_in_turn_ms<5>(
+      kRepetitions, {frame(plain), std::function<double()>(shadowed_frame), frame(clipped),
+                     frame(smooth), std::function<double()>(gradients)});
+  ShadingFigures figures{best[0], best[1], best[2], best[3], best[4], 0};
   std::size_t hits = 0, shadowed = 0;
   shadowed_frame();
   for (std::size_t p = 0; p < image.pixel_count(); ++p) {
@@ -75,9 +77,11 @@ ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& c
 void print_shading(const ShadingFigures& f) {
   std::printf(
       "  shading        plain %.1f ms; shadowing point light %.1f ms (%.2fx, %.0f%% of the hits "
-      "in shadow); clip box keeping half %.1f ms (%.2fx); smooth normals %.1f ms (%.2fx)\n",
+      "in shadow); clip box keeping half %.1f ms (%.2fx); smooth normals %.1f ms (%.2fx), their "
+      "vertex gradients %.1f ms per update (%.2fx)\n",
       f.plain_ms, f.shadow_ms, f.shadow_ms / f.plain_ms, 100 * f.shadowed_fraction, f.clip_ms,
-      f.clip_ms / f.plain_ms, f.smooth_ms, f.smooth_ms / f.plain_ms);
+      f.clip_ms / f.plain_ms, f.smooth_ms, f.smooth_ms / f.plain_ms, f.gradients_ms,
+      f.gradients_ms / f.plain_ms);
 }
 
 Json::Value shading_json(const ShadingFigures& f) {
@@ -90,6 +94,8 @@ Json::Value shading_json(const ShadingFigures& f) {
   json["clip_half_box_ratio"] = number(f.clip_ms / f.plain_ms);
   json["smooth_ms"] = number(f.smooth_ms);
   json["smooth_ratio"] = number(f.smooth_ms / f.plain_ms);
+  json["vertex_gradients_ms"] = number(f.gradients_ms);
+  json["vertex_gradients_ratio"] = number(f.gradients_ms / f.plain_ms);
   return json;
 }
 

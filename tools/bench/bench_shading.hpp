@@ -1,7 +1,8 @@
 // The shading modalities on the benchmark scene (Wald et al. 2007, §7, Fig. 7): the frame with a
 // shadowing point light (trace with its term, shadow rays from the hit points, shading), with a
-// clip box that removes half the volume, and with smooth normals, each timed in turn with the
-// plain frame in the same run and reported as a ratio to it.
+// clip box that removes half the volume, and with smooth normals (and the vertex gradients they
+// need, computed once per update), each timed in turn with the plain frame in the same run and
+// reported as a ratio to it.
 #pragma once
 
 #include <json/json.h>
@@ -16,6 +17,7 @@ struct ShadingFigures {
   double shadow_ms = 0;  // headlight + a shadowing point light
   double clip_ms = 0;    // a clip box keeping x <= 0
   double smooth_ms = 0;
+  double gradients_ms = 0;       // the smooth frame's vertex gradients, once per update
   double shadowed_fraction = 0;  // of the hit pixels, in the shadow of the point light
 };
 

@@ -4,7 +4,9 @@
 // the flat per-isopolygon normal, which shows the mesh as facets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "render/update/vertex_gradients.hpp"
@@ -48,6 +50,104 @@ TEST(VertexGradients, KeptCurrentByTheUpdateWhenAsked) {
     EXPECT_NEAR(v.x, 0.0, 1e-5);
     EXPECT_NEAR(v.y, -2.0, 1e-5);
   }
+}
+
+bool same_bits(const std::vector<render::Vec3f>& a, const std::vector<render::Vec3f>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
+}
+
+// The vertex gradients of `volume` with its tets split in two parts, as two ranks holding the
+// same vertices would find them: pass 1 on each, the maximum of their exponents, pass 2 on
+// each with those exponents, the sums added.
+std::vector<render::Vec3f> gradients_of_two_parts(render::TetVolume volume, std::size_t split) {
+  render::TetVolume first = volume, second = volume;
+  first.tets.resize(split);
+  second.tets.erase(second.tets.begin(), second.tets.begin() + static_cast<std::ptrdiff_t>(split));
+  std::vector<render::VertexExponents> e1, e2;
+  render::gradient_exponents(first, e1);
+  render::gradient_exponents(second, e2);
+  for (std::size_t k = 0; k < e1.size(); ++k)
+    for (int c = 0; c < 4; ++c) e1[k][c] = std::max(e1[k][c], e2[k][c]);
+  std::vector<render::VertexSums> s1, s2;
+  render::gradient_sums(first, e1, s1);
+  render::gradient_sums(second, e1, s2);
+  for (std::size_t k = 0; k < s1.size(); ++k)
+    for (int c = 0; c < 4; ++c) s1[k][c] += s2[k][c];
+  render::gradients_from_sums(volume, e1, s1);
+  return volume.gradients;
+}
+
+// 48000 tets: several of the parallel chunks, and in reversed order most of a chunk's vertices
+// belong to others.
+TEST(VertexGradients, IndependentOfTetOrderAndSplitBitForBit) {
+  const BoxMesh box = jittered_box(20);
+  const auto f =
+      sample_field(box.points, [](Vec3d p) { return std::sin(3 * p.x) * p.y + p.z * p.z; });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  render::compute_vertex_gradients(scene.volume);
+  const std::vector<render::Vec3f> whole = scene.volume.gradients;
+  for (const std::size_t split :
+       {std::size_t{1}, scene.volume.tets.size() / 3, scene.volume.tets.size() / 2}) {
+    EXPECT_TRUE(same_bits(gradients_of_two_parts(scene.volume, split), whole)) << split;
+  }
+  std::reverse(scene.volume.tets.begin(), scene.volume.tets.end());
+  std::rotate(scene.volume.tets.begin(), scene.volume.tets.begin() + 17, scene.volume.tets.end());
+  render::compute_vertex_gradients(scene.volume);
+  EXPECT_TRUE(same_bits(scene.volume.gradients, whole));
+}
+
+// Vertex 0's tets have x terms F, -F and 1 (F = 1e20): a double sum gives 1 or 0 depending on
+// their order, the exact sum 1 in every order, so the gradient is (1/3, 0, 0).
+TEST(VertexGradients, ExactSumsDoNotCancelAwayASmallTerm) {
+  constexpr float kF = 1e20f;
+  render::TetVolume volume;
+  volume.vertices = {{0, 0, 0, 0},   {1, 0, 0, kF}, {0, 1, 0, 0},  {0, 0, 1, 0},
+                     {-1, 0, 0, kF}, {1, 0, 0, 1},  {0, -1, 0, 0}, {0, 0, -1, 0}};
+  const render::Tet up{{0, 1, 2, 3}}, down{{0, 4, 2, 3}}, small{{0, 5, 6, 7}};
+  for (const std::vector<render::Tet>& order :
+       {std::vector{up, down, small}, std::vector{small, up, down}, std::vector{up, small, down}}) {
+    volume.tets = order;
+    render::compute_vertex_gradients(volume);
+    EXPECT_EQ(volume.gradients[0].x, 1.0f / 3);
+    EXPECT_EQ(volume.gradients[0].y, 0.0f);
+  }
+}
+
+// Every vertex's gradient against the linear field's, relative to its length.
+double largest_relative_error(const render::TetVolume& volume, Vec3d g) {
+  double worst = 0;
+  for (const render::Vec3f& v : volume.gradients) {
+    worst = std::max(worst, length(static_cast<Vec3d>(v) - g) / length(g));
+  }
+  return worst;
+}
+
+TEST(VertexGradients, ExactForALinearFieldOnTetsOfSizesFrom1eMinus6To1) {
+  // x graded as sign(x) |x|^10: the cells next to x = 0 are 1e-6 wide, the outer ones 0.94,
+  // and vertices at x = +-0.25^10 join both kinds. The field varies along x only, so its float
+  // values keep their precision across the thinnest cells.
+  BoxMesh box = make_box_mesh({.cells = {8, 4, 4}});
+  for (std::size_t p = 0; p < box.point_count(); ++p) {
+    double& x = box.points[3 * p];
+    x = std::copysign(std::pow(std::abs(x), 10), x);
+  }
+  const Vec3d g{3, 0, 0};
+  const auto f = sample_field(box.points, [&](Vec3d p) { return dot(g, p); });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  render::compute_vertex_gradients(scene.volume);
+  EXPECT_LT(largest_relative_error(scene.volume, g), 1e-5);
+}
+
+TEST(VertexGradients, ExactForALinearFieldOnAMeshAt1e6) {
+  BoxMesh box = jittered_box(6);
+  for (double& c : box.points) c += 1e6;
+  const Vec3d g{0.3, -1.2, 2.5};
+  const auto f = sample_field(box.points, [&](Vec3d p) {
+    return dot(g, p - Vec3d{1e6, 1e6, 1e6}) + 0.7;
+  });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  render::compute_vertex_gradients(scene.volume);
+  EXPECT_LT(largest_relative_error(scene.volume, g), 1e-5);
 }
 
 struct AngleErrors {

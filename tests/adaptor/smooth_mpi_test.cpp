@@ -1,0 +1,186 @@
+// Smooth shading on a split mesh (docs/architecture.md, "Smooth shading across ranks"): the
+// per-vertex gradients of the tets split into slabs, each rank's exact partial sums combined
+// over the ranks that share a vertex, are bit for bit those of one rank holding every tet; and
+// the gyroid-twist scene, smooth, transparent, clipped and shadowed, rendered by all ranks gives
+// the PNG and EXR of rank 0 alone, at the first step and at a second one that moves the points
+// and changes the field.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "render/update/vertex_gradients.hpp"
+#include "render/update/volume_update.hpp"
+#include "shared_dir.hpp"
+#include "shared_gradients.hpp"
+#include "slab_partition.hpp"
+#include "support/png_read.hpp"
+#include "tetray/adaptor.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace tetray::testing {
+namespace {
+
+const GyroidTwist& scene() {
+  static const GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
+  return gyroid;
+}
+
+struct Loaded {
+  render::TetVolume volume;
+  render::Bvh bvh;
+};
+
+// The volume of `tets` with every rank's origin, gradients left to the caller.
+void load(const std::vector<std::int64_t>& tets, Loaded& out) {
+  const std::vector<double>& p = scene().mesh.points;
+  const render::PointSource points{p.data(), render::ScalarKind::f64, nullptr,
+                                   render::ScalarKind::f64, p.size() / 3};
+  const render::FieldSource field{scene().field.data(), render::ScalarKind::f64,
+                                  scene().field.size()};
+  const render::Vec3d origin{0, 0, 0};
+  render::load_volume(out.volume, out.bvh, tets, {}, {}, points, field, {}, &origin);
+}
+
+// Points of `slab` whose gradient differs (in any bit) from the whole mesh's.
+std::size_t differing_gradients(const Loaded& whole, const Loaded& slab) {
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < slab.volume.point_vertex.size(); ++p) {
+    const std::uint32_t k = slab.volume.point_vertex[p];
+    if (k == render::kNoVertex) continue;
+    const render::Vec3f& a = slab.volume.gradients[k];
+    const render::Vec3f& b = whole.volume.gradients[whole.volume.point_vertex[p]];
+    count += std::memcmp(&a, &b, sizeof a) != 0;
+  }
+  return count;
+}
+
+TEST(SmoothAcrossRanks, VertexGradientsAreThoseOfOneRankBitForBit) {
+  Loaded whole, slab;
+  load(scene().mesh.tets, whole);
+  render::compute_vertex_gradients(whole.volume);
+  load(x_slab(scene().mesh, rank(), world_size()).tets, slab);
+  // Alone, a rank's boundary vertices miss the other ranks' tets.
+  render::compute_vertex_gradients(slab.volume);
+  const std::size_t alone = differing_gradients(whole, slab);
+  if (world_size() > 1) {
+    EXPECT_GT(alone, 0u) << "the slabs must share vertices";
+  }
+  SharedGradients shared;
+  const PointsView points = PointsView::of(std::span<const double>(scene().mesh.points));
+  ASSERT_EQ(shared.match(slab.volume, points, MPI_COMM_WORLD), "");
+  ASSERT_EQ(shared.compute(slab.volume), "");
+  EXPECT_EQ(differing_gradients(whole, slab), 0u)
+      << "on rank " << rank() << " of " << world_size() << " (" << alone << " alone)";
+}
+
+std::string config(const std::string& directory, const std::string& shading) {
+  return "output: {directory: " + directory +
+         ", formats: [png, exr], quiet: true}\n"
+         "scenes:\n"
+         "  - name: smooth\n"
+         "    field: f\n"
+         "    isovalues: [-0.5, 0, 0.5]\n"
+         "    shading: " +
+         shading +
+         "\n"
+         "    opacity: [0.5, 1, 0.6]\n"
+         "    max_layers: 3\n"
+         "    camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n"
+         "    image: {width: 96, height: 96}\n"
+         "    clip:\n"
+         "      box: {min: [-2, -2, -2], max: [0.3, 2, 2]}\n"
+         "      planes: [{point: [0, 0.5, 0], normal: [0.2, 1, 0.1]}]\n"
+         "    lights: [{type: headlight},\n"
+         "             {type: point, position: [2, 3, 1.5], shadows: true},\n"
+         "             {type: directional, direction: [-1, -0.4, -2], shadows: true}]\n";
+}
+
+void render(MPI_Comm comm, const std::string& directory, const std::string& shading,
+            const std::vector<std::int64_t>& tets) {
+  const MeshView mesh{PointsView::of(std::span<const double>(scene().mesh.points)),
+                      TetsView::of(std::span<const std::int64_t>(tets))};
+  const FieldView fields[] = {FieldView::of("f", std::span<const double>(scene().field))};
+  render_step_zero(comm, config(directory, shading), mesh, fields);
+}
+
+// Steps 0 and 1 of the twisting gyroid (t = 0.2, then 0.6: new coordinates and field on the
+// same topology, so step 1 refits and finds the shared vertices of step 0).
+void render_two_steps(MPI_Comm comm, const std::string& directory,
+                      const std::vector<std::int64_t>& tets) {
+  Status status;
+  auto adaptor = Adaptor::create_from_yaml(comm, config(directory, "smooth"), status);
+  ASSERT_TRUE(adaptor) << status.message;
+  std::vector<double> points = scene().mesh.points, field = scene().field;
+  for (int step = 0; step < 2; ++step) {
+    if (step == 1) deform_gyroid_twist(scene().mesh, 0.6, points, field);
+    const MeshView mesh{PointsView::of(std::span<const double>(points)),
+                        TetsView::of(std::span<const std::int64_t>(tets))};
+    const FieldView fields[] = {FieldView::of("f", std::span<const double>(field))};
+    const Changes changes{step == 1, step == 0, true};
+    ASSERT_TRUE(adaptor->execute(step, step, mesh, fields, changes).ok());
+  }
+  ASSERT_TRUE(adaptor->finalize().ok());
+}
+
+std::string bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(SmoothAcrossRanks, SmoothShadingGivesTheImageOfOneRank) {
+  const SharedDir shared("smooth_across_ranks");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  const std::string file = "/smooth/smooth_000000.";
+  if (rank() == 0) {
+    render(MPI_COMM_SELF, one, "smooth", scene().mesh.tets);
+    render(MPI_COMM_SELF, shared.path() + "/flat", "flat", scene().mesh.tets);
+  }
+  render(MPI_COMM_WORLD, split, "smooth", x_slab(scene().mesh, rank(), world_size()).tets);
+  if (rank() != 0) return;
+  const PngPixels whole = read_png_rgba8(one + file + "png");
+  const PngPixels parts = read_png_rgba8(split + file + "png");
+  const PngPixels flat = read_png_rgba8(shared.path() + "/flat" + file + "png");
+  ASSERT_TRUE(whole.error.empty() && parts.error.empty() && flat.error.empty())
+      << whole.error << parts.error << flat.error;
+  ASSERT_EQ(whole.rgba.size(), parts.rgba.size());
+  EXPECT_EQ(differing_pixels(whole, parts), 0u) << "on " << world_size() << " ranks";
+  EXPECT_TRUE(bytes(one + file + "exr") == bytes(split + file + "exr"))
+      << "the EXR on " << world_size() << " ranks";
+  EXPECT_GT(differing_pixels(whole, flat), whole.rgba.size() / 4 / 5) << "smooth must show";
+}
+
+TEST(SmoothAcrossRanks, ARankWithoutTetsChangesNothing) {
+  if (world_size() < 2) GTEST_SKIP() << "needs a rank with tets and one without";
+  const SharedDir shared("smooth_empty_rank");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  if (rank() == 0) render(MPI_COMM_SELF, one, "smooth", scene().mesh.tets);
+  const int last = world_size() - 1;
+  render(MPI_COMM_WORLD, split, "smooth",
+         rank() == last ? std::vector<std::int64_t>{} : x_slab(scene().mesh, rank(), last).tets);
+  if (rank() != 0) return;
+  const std::string file = "/smooth/smooth_000000.png";
+  EXPECT_FALSE(bytes(one + file).empty());
+  EXPECT_TRUE(bytes(one + file) == bytes(split + file)) << "on " << world_size() << " ranks";
+}
+
+TEST(SmoothAcrossRanks, ANewStepKeepsTheImageOfOneRank) {
+  const SharedDir shared("smooth_second_step");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  if (rank() == 0) render_two_steps(MPI_COMM_SELF, one, scene().mesh.tets);
+  render_two_steps(MPI_COMM_WORLD, split, x_slab(scene().mesh, rank(), world_size()).tets);
+  if (rank() != 0) return;
+  const std::string file = "/smooth/smooth_000001.";
+  EXPECT_FALSE(bytes(one + file + "png").empty());
+  EXPECT_TRUE(bytes(one + file + "png") == bytes(split + file + "png"))
+      << "on " << world_size() << " ranks";
+  EXPECT_TRUE(bytes(one + "/smooth/smooth_000000.png") != bytes(one + file + "png"))
+      << "step 1 must show the new step";
+}
+
+}  // namespace
+}  // namespace tetray::testing
