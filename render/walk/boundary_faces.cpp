@@ -156,7 +156,8 @@ void refit_boundary_faces(const TetVolume& volume, BoundaryFaces& boundary) {
 }
 
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
-                                    const RayFrame& frame, double t_from, EntryCursor after) {
+                                    const RayFrame& frame, double t_from, EntryCursor after,
+                                    std::span<const float> second) {
   if (boundary.nodes.empty()) return std::nullopt;
   std::optional<FaceEntry> best;
   double t_best = std::numeric_limits<double>::infinity();
@@ -178,7 +179,7 @@ std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces
     for (std::uint32_t f = node.first; f < node.first + node.count; ++f) {
       const std::optional<ProjectedFace> projected = entering(volume, frame, boundary.faces[f]);
       if (!projected) continue;
-      const FaceCrossing crossing = cross_face(volume, frame, *projected);
+      const FaceCrossing crossing = cross_face(volume, frame, *projected, second);
       if (crossing.t < t_from || !is_after(crossing.t, f, after)) continue;
       if (best && (crossing.t > t_best || (crossing.t == t_best && f > best->face))) continue;
       best = FaceEntry{f, boundary.faces[f].tet, *projected, crossing};

@@ -60,8 +60,9 @@ struct EntryCursor {
 };
 
 // The first face, in (t, face) order and after `after`, through which the ray enters the domain
-// at t >= t_from.
+// at t >= t_from; `second` as for cross_face.
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
-                                    const RayFrame& frame, double t_from, EntryCursor after);
+                                    const RayFrame& frame, double t_from, EntryCursor after,
+                                    std::span<const float> second = {});
 
 }  // namespace tetray::render

@@ -30,7 +30,8 @@ struct WalkSegment {
   std::uint32_t tet;
   double t_in, t_out;
   double f_in, f_out;
-  bool entered;  // the first tet after entering the domain through a boundary face
+  bool entered;        // the first tet after entering the domain through a boundary face
+  double g_in, g_out;  // the mesh's second field (WalkMesh), or f without one
 };
 
 struct WalkCounters {
@@ -51,6 +52,9 @@ struct WalkMesh {
   const TetVolume& volume;
   const FaceAdjacency<Layout>& adjacency;
   const BoundaryFaces& boundary;
+  // A second point field walked along with the volume's own (per vertex of the vertex store;
+  // empty: none), e.g. the field of a volume scene's isosurfaces.
+  std::span<const float> second_field = {};
 };
 
 // Which face of the tet (entry face p0 p1 p2 counter-clockwise, new vertex p3) the ray leaves
@@ -77,7 +81,7 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
   double t_from = 0;
   EntryCursor cursor;
   while (const std::optional<FaceEntry> entry =
-             next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor)) {
+             next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field)) {
     if (entry->crossing.t > t_max) return;
     cursor = {entry->crossing.t, entry->face, true};
     ++counters.entries;
@@ -100,9 +104,10 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
           cell.next(previous, order_among(v3, face, v3), order_among(face.vertex[k], face, v3));
       face.vertex[k] = v3;
       face.point[k] = p3;
-      FaceCrossing out = cross_face(mesh.volume, frame, face);
+      FaceCrossing out = cross_face(mesh.volume, frame, face, mesh.second_field);
       out.t = std::max(out.t, in.t);
-      if (!visit(WalkSegment{tet, in.t, out.t, in.f, out.f, entered}) || out.t >= t_max) return;
+      const WalkSegment segment{tet, in.t, out.t, in.f, out.f, entered, in.g, out.g};
+      if (!visit(segment) || out.t >= t_max) return;
       entered = false;
       if (next == kBoundaryFace) {
         // Rounding may put the next entry a few ulps before this exit.
