@@ -41,6 +41,12 @@ std::uint64_t peak_rss_bytes() {
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
 }
 
+// The field of a volume scene's surfaces when it is not the scene's own; else empty.
+const std::string& surface_field(const config::Scene& s) {
+  static const std::string none;
+  return s.volume ? s.volume->surface_field : none;
+}
+
 std::uint64_t count_zeros(const std::vector<std::uint8_t>& keep) {
   return static_cast<std::uint64_t>(std::count(keep.begin(), keep.end(), std::uint8_t{0}));
 }
@@ -243,8 +249,8 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
 Status Adaptor::Impl::check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields) {
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const SceneState& s = scenes_[k];
-    for (const std::string* name :
-         {&s.config.field, &s.config.color_by, &s.config.shading.cap.field}) {
+    for (const std::string* name : {&s.config.field, &s.config.color_by,
+                                    &s.config.shading.cap.field, &surface_field(s.config)}) {
       if (!s.due || name->empty()) continue;
       std::string e = missing_field(fields, *name, s.config.name, mesh.tets.count);
       if (!e.empty()) {
@@ -338,7 +344,8 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
       skip(k, volume_check.message);
       continue;
     }
-    for (const std::string* colored : {&s.config.color_by, &s.config.shading.cap.field}) {
+    for (const std::string* colored :
+         {&s.config.color_by, &s.config.shading.cap.field, &surface_field(s.config)}) {
       if (colored->empty() || *colored == volume.field()) continue;
       const Status color_check = check(*colored, color_keep_);
       if (color_check.failed()) return color_check;
@@ -418,9 +425,17 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     FieldVolume& volume = volumes_[s.volume];
     if (s.config.volume) {
       const render::Stopwatch watch;
-      const render::VolumeRenderOptions options =
+      render::VolumeRenderOptions options =
           volume_options(*s.config.volume, ranges_.scenes[k].color);
       s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
+      options.surfaces = s.config.surfaces;
+      options.ambient = s.config.ambient;
+      if (!surface_field(s.config).empty()) {
+        render::load_vertex_field(volume.volume(),
+                                  field_source(field_or_empty(fields, surface_field(s.config))),
+                                  s.surface_field);
+        options.surface_field = s.surface_field;
+      }
       s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
                                           camera_for(s, ranges_.scenes[k]), options);
       s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view

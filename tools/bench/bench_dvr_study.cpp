@@ -36,7 +36,7 @@ render::Framebuffer render_frame(const render::TetVolume& volume, const render::
                                  const render::Camera& camera, double sample_step) {
   render::VolumeRenderOptions options = dvr_options(1.0);
   options.sample_step = sample_step;
-  render::FragmentImage fragments = render::render_volume(volume, walk, camera, options);
+  render::VolumeFragmentImage fragments = render::render_volume(volume, walk, camera, options);
   return render::resolve(fragments);
 }
 
