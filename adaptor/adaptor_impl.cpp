@@ -436,8 +436,11 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
                                   s.surface_field);
         options.surface_field = s.surface_field;
       }
+      const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+      // A camera inside this rank's tets starts every ray's walk in the eye's tet.
+      options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
       s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
-                                          camera_for(s, ranges_.scenes[k]), options);
+                                          camera, options);
       s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
       s.trace_ms.assign(1, watch.ms());
       continue;

@@ -106,6 +106,23 @@ bool is_after(double t, std::uint32_t face, const EntryCursor& cursor) {
 
 }  // namespace
 
+std::optional<FaceEntry> entry_behind(const TetVolume& volume, const RayFrame& frame,
+                                      std::uint32_t tet, std::span<const float> second) {
+  const Tet& t = volume.tets[tet];
+  // The ray's line enters a tet through exactly one face (ray_side decides every tie).
+  for (int k = 0; k < 4; ++k) {
+    BoundaryFace face{};
+    for (int c = 0; c < 3; ++c) face.vertex[c] = static_cast<std::uint32_t>(t.v[(k + 1 + c) % 4]);
+    face.opposite_vertex = static_cast<std::uint32_t>(t.v[k]);
+    face.tet = tet;
+    if (const std::optional<ProjectedFace> projected = entering(volume, frame, face)) {
+      return FaceEntry{kBoundaryFace, tet, *projected,
+                       cross_face(volume, frame, *projected, second)};
+    }
+  }
+  return std::nullopt;
+}
+
 BoundaryFaces build_boundary_faces(const TetVolume& volume,
                                    std::span<const BoundaryFaceRef> boundary) {
   BoundaryFaces result;

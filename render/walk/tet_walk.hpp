@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "render/volume/tet_volume.hpp"
@@ -71,19 +72,37 @@ inline int order_among(std::uint32_t x, const ProjectedFace& face, std::uint32_t
   return int(face.vertex[0] < x) + int(face.vertex[1] < x) + int(face.vertex[2] < x) + int(v3 < x);
 }
 
+// The stretch of a tet the ray starts in from t <= 0 (entry_behind) that lies at t >= 0: the
+// fields at t = 0 by linear interpolation.
+inline FaceCrossing clamp_to_eye(const FaceCrossing& in, const FaceCrossing& out) {
+  if (!(in.t < 0)) return in;
+  const double u = out.t > in.t ? std::min(1.0, -in.t / (out.t - in.t)) : 1.0;
+  return {0.0, std::lerp(in.f, out.f, u), std::lerp(in.g, out.g, u)};
+}
+
 // Walks the ray from t = 0 to t_max, calling visit(const WalkSegment&) for each tet in order
 // along the ray; visit returns false to stop the walk early (early ray termination).
+// `eye_tet`: the tet holding the ray's origin (a camera inside the mesh, point_locate.hpp), where
+// the walk starts before looking for boundary faces; kBoundaryFace: none. Tet20 only (Tet16
+// ignores it: it would need the neighbour behind the eye to decode the next one).
 template <typename Layout, typename Visit>
 void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max, Visit&& visit,
-              WalkCounters& counters) {
+              WalkCounters& counters, std::uint32_t eye_tet = kBoundaryFace) {
   const std::uint64_t step_bound = mesh.volume.tets.size() + 64;
   std::uint64_t steps = 0;
   double t_from = 0;
   EntryCursor cursor;
-  while (const std::optional<FaceEntry> entry =
-             next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field)) {
+  std::optional<FaceEntry> entry;
+  if constexpr (std::is_same_v<Layout, Tet20>) {
+    if (eye_tet != kBoundaryFace)
+      entry = entry_behind(mesh.volume, frame, eye_tet, mesh.second_field);
+  }
+  if (!entry)
+    entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field);
+  for (; entry;
+       entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field)) {
     if (entry->crossing.t > t_max) return;
-    cursor = {entry->crossing.t, entry->face, true};
+    if (entry->face != kBoundaryFace) cursor = {entry->crossing.t, entry->face, true};
     ++counters.entries;
     ProjectedFace face = entry->projected;
     FaceCrossing in = entry->crossing;
@@ -105,6 +124,7 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
       face.vertex[k] = v3;
       face.point[k] = p3;
       FaceCrossing out = cross_face(mesh.volume, frame, face, mesh.second_field);
+      in = clamp_to_eye(in, out);
       out.t = std::max(out.t, in.t);
       const WalkSegment segment{tet, in.t, out.t, in.f, out.f, entered, in.g, out.g};
       if (!visit(segment) || out.t >= t_max) return;

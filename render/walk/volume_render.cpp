@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "render/walk/fixed_step.hpp"
+#include "render/walk/point_locate.hpp"
 #include "render/walk/segment_integral.hpp"
 #include "render/walk/surface_crossing.hpp"
 #include "render/walk/tet_walk.hpp"
@@ -123,6 +124,11 @@ WalkStructure build_walk_structure(const TetVolume& volume) {
   return walk;
 }
 
+std::uint32_t locate_eye(const TetVolume& volume, const Bvh& bvh, const Camera& camera) {
+  const std::optional<PointLocation> at = locate_point(volume, bvh, camera.eye - volume.origin);
+  return at ? at->tet : kBoundaryFace;
+}
+
 VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& walk,
                                   const Camera& camera, const VolumeRenderOptions& options,
                                   VolumeRenderStats* stats) {
@@ -143,7 +149,7 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
       WalkCounters counters;
       walk_ray(
           mesh, ray, std::numeric_limits<double>::infinity(),
-          [&](const WalkSegment& s) { return gather.add(s); }, counters);
+          [&](const WalkSegment& s) { return gather.add(s); }, counters, options.eye_tet);
       gather.close_run();
       row.counts[static_cast<std::size_t>(i)] =
           static_cast<std::uint32_t>(row.fragments.size() - before);

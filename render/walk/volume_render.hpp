@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "render/bvh/bvh.hpp"
 #include "render/core/fragments.hpp"
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
@@ -34,6 +35,9 @@ struct VolumeRenderOptions {
   std::vector<IsoSurface> surfaces;
   std::span<const float> surface_field;
   double ambient = 0.15;
+  // The tet holding the camera's eye (locate_eye): every ray's walk starts there; kBoundaryFace:
+  // the eye lies outside this rank's tets, rays start at the boundary faces they enter through.
+  std::uint32_t eye_tet = kBoundaryFace;
 };
 
 struct VolumeRenderStats {
@@ -53,6 +57,9 @@ struct WalkStructure {
   std::size_t bytes() const { return adjacency.bytes() + boundary.bytes(); }
 };
 WalkStructure build_walk_structure(const TetVolume& volume);
+
+// The tet of `volume` holding the eye of `camera` (world coordinates), or kBoundaryFace.
+std::uint32_t locate_eye(const TetVolume& volume, const Bvh& bvh, const Camera& camera);
 
 // The fragments of every pixel of `camera` (world coordinates; the volume's are local). Parallel
 // over rows in the calling oneTBB arena; the result does not depend on the thread count.

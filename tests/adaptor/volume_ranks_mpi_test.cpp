@@ -4,7 +4,9 @@
 // the tets split into slabs, writes the very bytes of the one-rank PNG and EXR files: a rank's
 // runs keep their colors in double, so the over operator's different association on a split
 // changes them far below the files' rounding. The surfaces show: the image differs from the
-// volume's alone.
+// volume's alone. A camera inside the mesh starts every ray in the eye's tet on the rank
+// holding it (the others' rays enter their slabs through boundary faces): every pixel sees
+// the volume, and the bytes are again those of one rank.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -38,23 +40,24 @@ const VolumeScene& scene() {
   return s;
 }
 
-const char* const kScenes[] = {"fog", "skin"};
+const char* const kScenes[] = {"fog", "skin", "inside"};
 
 std::string config(const std::string& directory) {
-  const std::string scene_keys =
+  const std::string volume =
       "    field: temperature\n"
       "    volume: {colormap: coolwarm, range: [0, 1], opacity: [[0, 0.1], [1, 1.2]],\n"
       "             unit_distance: 0.5, termination: 1}\n"
-      "    camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n"
       "    image: {width: 320, height: 320}\n";
-  return "output: {directory: " + directory +
-         ", formats: [png, exr], quiet: true}\n"
-         "scenes:\n"
-         "  - name: fog\n" +
-         scene_keys + "  - name: skin\n" + scene_keys +
-         "    surfaces: {field: f, isovalues: [0.5, 0], colors: [[0.9, 0.9, 0.9], [0.2, 0.8, "
-         "0.3]],\n"
-         "               opacity: [0.4, 1]}\n";
+  const std::string outside =
+      "    camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n";
+  const std::string surfaces =
+      "    surfaces: {field: f, isovalues: [0.5, 0], opacity: [0.4, 1],\n"
+      "               colors: [[0.9, 0.9, 0.9], [0.2, 0.8, 0.3]]}\n";
+  const std::string inside =
+      "    camera: {eye: [-0.1, 0.15, 0.2], look_at: [1, 0.5, -0.6], up: [0, 1, 0], fov_deg: 70}\n";
+  return "output: {directory: " + directory + ", formats: [png, exr], quiet: true}\n" +
+         "scenes:\n  - name: fog\n" + volume + outside + "  - name: skin\n" + volume + outside +
+         surfaces + "  - name: inside\n" + volume + inside + surfaces;
 }
 
 void render(MPI_Comm comm, const std::string& directory, const Slab& part) {
@@ -94,6 +97,11 @@ TEST(VolumeAcrossRanks, WritesTheBytesOfOneRank) {
   const PngPixels skin = read_png_rgba8(file(one, "skin", "png"));
   ASSERT_TRUE(fog.error.empty() && skin.error.empty()) << fog.error << skin.error;
   EXPECT_GT(differing_pixels(fog, skin), fog.rgba.size() / 4 / 5) << "the surfaces must show";
+  const PngPixels inside = read_png_rgba8(file(one, "inside", "png"));
+  ASSERT_TRUE(inside.error.empty()) << inside.error;
+  std::size_t clear = 0;
+  for (std::size_t p = 3; p < inside.rgba.size(); p += 4) clear += inside.rgba[p] == 0;
+  EXPECT_EQ(clear, 0u) << "every ray from inside the mesh must see the volume";
 }
 
 }  // namespace

@@ -98,13 +98,18 @@ std::pair<double, double> box_chord(Vec3d o, Vec3d d) {
   return {t0, std::max(t0, t1)};
 }
 
-// Per pixel of a camera onto the box: the fragments' merged color against `expected(o, d,
-// t0, t1) -> {rgb, alpha}`.
+render::Camera box_camera() {
+  const int side = scaled_side(48);
+  return look_at({0.6, -0.9, 4.5}, {0, 0.1, 0}, 38, side, side);
+}
+
+// Per pixel of `camera` (by default onto the box from outside): the fragments' merged color
+// against `expected(o, d, t0, t1) -> {rgb, alpha}`.
 template <typename Expected>
 void expect_box_image(const VolumeScene& v, const render::VolumeRenderOptions& options,
-                      Expected&& expected, double tolerance) {
-  const int side = scaled_side(48);
-  const render::Camera camera = look_at({0.6, -0.9, 4.5}, {0, 0.1, 0}, 38, side, side);
+                      Expected&& expected, double tolerance,
+                      const render::Camera& camera = box_camera()) {
+  const int side = camera.width;
   render::VolumeFragmentImage fragments =
       render::render_volume(v.scene.volume, v.walk, camera, options);
   const render::Framebuffer image = render::resolve(fragments);
@@ -292,9 +297,30 @@ TEST(VolumeSurfaces, CrossingsMatchTheReference) {
   EXPECT_GT(compared, side * side / 4);
 }
 
+// The box's constant volume (extinction k, orange) and the plane x = `plane` of a lit surface
+// (headlight, |cos| = |d.x|) along the ray's chord [t0, t1].
+std::array<double, 4> volume_and_plane(Vec3d o, Vec3d d, double t0, double t1, double k,
+                                       double plane, render::Rgb rgb, double opacity,
+                                       double ambient) {
+  const double ts = (plane - o.x) / d.x;
+  const bool crossed = ts > t0 && ts < t1;
+  const double t_front = std::exp(-k * ((crossed ? ts : t1) - t0));
+  std::array<double, 4> c = {1.0 * (1 - t_front), 0.5 * (1 - t_front), 0.25 * (1 - t_front),
+                             1 - t_front};
+  if (!crossed) return c;
+  const double light = ambient + (1 - ambient) * std::abs(d.x);
+  const double back = 1 - std::exp(-k * (t1 - ts));  // the volume behind the plane
+  const double surface[3] = {rgb.r, rgb.g, rgb.b};
+  const double volume[3] = {1.0, 0.5, 0.25};
+  for (int ch = 0; ch < 3; ++ch)
+    c[ch] += t_front * (opacity * light * surface[ch] + (1 - opacity) * back * volume[ch]);
+  c[3] += t_front * (opacity + (1 - opacity) * back);
+  return c;
+}
+
 TEST(VolumeSurfaces, ConstantVolumeBeforeAPlaneIsBeerLambert) {
-  // Volume: constant field, extinction 0.8, orange. Surface: x = 0.2 of the field g = x, lit by
-  // the headlight, |cos| = |d.x|.
+  // Volume: constant field, extinction 0.8, orange. Surface: x = 0.2 of the field g = x. Seen
+  // from outside the box, and from an eye inside it, whose rays start in the eye's tet.
   const BoxMesh mesh = jittered_box(4, 0.15);
   const VolumeScene v(mesh, [](Vec3d) { return 0.3; });
   const std::vector<double> g = sample_field(mesh.points, [](Vec3d x) { return x.x; });
@@ -308,26 +334,15 @@ TEST(VolumeSurfaces, ConstantVolumeBeforeAPlaneIsBeerLambert) {
     options.surfaces = {{static_cast<float>(plane), rgb, opacity}};
     options.surface_field = second;
     options.ambient = ambient;
-    expect_box_image(
-        v, options,
-        [&](Vec3d o, Vec3d d, double t0, double t1) {
-          const double ts = (plane - o.x) / d.x;
-          const double front = ts > t0 && ts < t1 ? ts - t0 : t1 - t0;
-          const double t_front = std::exp(-k * front);
-          std::array<double, 4> c = {1.0 * (1 - t_front), 0.5 * (1 - t_front), 0.25 * (1 - t_front),
-                                     1 - t_front};
-          if (!(ts > t0 && ts < t1)) return c;
-          const double light = ambient + (1 - ambient) * std::abs(d.x);
-          const double back = 1 - std::exp(-k * (t1 - ts));  // the volume behind the plane
-          const double surface[3] = {rgb.r, rgb.g, rgb.b};
-          const double volume[3] = {1.0, 0.5, 0.25};
-          for (int ch = 0; ch < 3; ++ch) {
-            c[ch] += t_front * (opacity * light * surface[ch] + (1 - opacity) * back * volume[ch]);
-          }
-          c[3] += t_front * (opacity + (1 - opacity) * back);
-          return c;
-        },
-        2e-6);
+    const auto expected = [&](Vec3d o, Vec3d d, double t0, double t1) {
+      return volume_and_plane(o, d, t0, t1, k, plane, rgb, opacity, ambient);
+    };
+    expect_box_image(v, options, expected, 2e-6);
+    const render::Camera inside =
+        look_at({-0.35, 0.1, 0.3}, {1, 0.4, -0.5}, 70, scaled_side(40), scaled_side(40));
+    options.eye_tet = render::locate_eye(v.scene.volume, v.scene.bvh, inside);
+    ASSERT_NE(options.eye_tet, render::kBoundaryFace);
+    expect_box_image(v, options, expected, 2e-6, inside);
   }
 }
 
