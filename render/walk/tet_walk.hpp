@@ -31,7 +31,7 @@ struct WalkSegment {
   std::uint32_t tet;
   double t_in, t_out;
   double f_in, f_out;
-  bool entered;        // the first tet after entering the domain through a boundary face
+  bool entered;        // the first tet after entering the domain (a boundary face, or the eye)
   double g_in, g_out;  // the mesh's second field (WalkMesh), or f without one
 };
 
