@@ -6,10 +6,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {

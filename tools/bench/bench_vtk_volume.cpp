@@ -24,10 +24,10 @@
 #include <functional>
 
 #include "bench_reference_vtk.hpp"
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {
