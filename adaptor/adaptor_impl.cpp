@@ -44,6 +44,12 @@ std::uint64_t peak_rss_bytes() {
 constexpr std::uint8_t kGradientsUpdated = 1;
 constexpr std::uint8_t kGradientsLoaded = 2;
 
+// The field of a volume scene's surfaces when it is not the scene's own; else empty.
+const std::string& surface_field(const config::Scene& s) {
+  static const std::string none;
+  return s.volume ? s.volume->surface_field : none;
+}
+
 std::uint64_t count_zeros(const std::vector<std::uint8_t>& keep) {
   return static_cast<std::uint64_t>(std::count(keep.begin(), keep.end(), std::uint8_t{0}));
 }
@@ -248,8 +254,8 @@ Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> 
 Status Adaptor::Impl::check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields) {
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const SceneState& s = scenes_[k];
-    for (const std::string* name :
-         {&s.config.field, &s.config.color_by, &s.config.shading.cap.field}) {
+    for (const std::string* name : {&s.config.field, &s.config.color_by,
+                                    &s.config.shading.cap.field, &surface_field(s.config)}) {
       if (!s.due || name->empty()) continue;
       std::string e = missing_field(fields, *name, s.config.name, mesh.tets.count);
       if (!e.empty()) {
@@ -343,7 +349,8 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
       skip(k, volume_check.message);
       continue;
     }
-    for (const std::string* colored : {&s.config.color_by, &s.config.shading.cap.field}) {
+    for (const std::string* colored :
+         {&s.config.color_by, &s.config.shading.cap.field, &surface_field(s.config)}) {
       if (colored->empty() || *colored == volume.field()) continue;
       const Status color_check = check(*colored, color_keep_);
       if (color_check.failed()) return color_check;
@@ -467,11 +474,22 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
     FieldVolume& volume = volumes_[s.volume];
     if (s.config.volume) {
       const render::Stopwatch watch;
-      const render::VolumeRenderOptions options =
+      render::VolumeRenderOptions options =
           volume_options(*s.config.volume, ranges_.scenes[k].color);
       s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
+      options.surfaces = s.config.surfaces;
+      options.ambient = s.config.ambient;
+      if (!surface_field(s.config).empty()) {
+        render::load_vertex_field(volume.volume(),
+                                  field_source(field_or_empty(fields, surface_field(s.config))),
+                                  s.surface_field);
+        options.surface_field = s.surface_field;
+      }
+      const render::Camera camera = camera_for(s, ranges_.scenes[k]);
+      // A camera inside this rank's tets starts every ray's walk in the eye's tet.
+      options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
       s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
-                                          camera_for(s, ranges_.scenes[k]), options);
+                                          camera, options);
       s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
       s.trace_ms.assign(1, watch.ms());
       continue;

@@ -64,7 +64,7 @@ class Adaptor::Impl {
     std::vector<View> views;                  // one without an orbit
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
-    render::FragmentImage fragments;          // a volume scene's, before compositing
+    render::VolumeFragmentImage fragments;    // a volume scene's, before compositing
     // Per view, one term per shadowing light (scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
     std::vector<render::LayerImage> layers;  // per view, a transparent scene's (scene_layers.hpp)
@@ -73,6 +73,8 @@ class Adaptor::Impl {
     const render::Colormap* cap_colormap = nullptr;
     render::ValueRange cap_range;  // of the cap's colormap, this step
     std::vector<float> cap_field;  // per vertex of the scene's volume
+    // A volume scene's surfaces of another field than its own: that field per vertex.
+    std::vector<float> surface_field;
   };
 
   static constexpr std::size_t kAnyVolume = ~std::size_t{0};

@@ -80,6 +80,9 @@ struct VolumeSpec {
   std::vector<render::OpacityPoint> opacity;  // ascending values
   double unit_distance = 1;
   double termination = 0.99;  // opacity that ends a ray; 1: no early termination
+  // The field of the scene's isosurfaces met along the walk (Scene::surfaces, the `surfaces`
+  // key); empty: the scene's field.
+  std::string surface_field;
 };
 
 struct Scene {
@@ -97,7 +100,7 @@ struct Scene {
   Annotations annotations{};
   Orbit orbit{};
   std::vector<Keyframe> keyframes;   // strictly increasing times; empty: the camera as given
-  std::optional<VolumeSpec> volume;  // a volume scene: no isosurfaces
+  std::optional<VolumeSpec> volume;  // a volume scene: its surfaces are layers along the walk
   ShadingSpec shading{};
   float lod_node_pixels = 0;  // level of detail (config_lod.hpp); 0: exact images
 };

@@ -232,6 +232,21 @@ void parse_surfaces(const YamlReader& r, const YAML::Node& node, const std::stri
   }
 }
 
+// A volume scene's isosurfaces, layers along the walk (render/walk/surface_crossing.hpp): the
+// keys of an isosurface scene (isovalues, colors, opacity) and the field they are of.
+void parse_volume_surfaces(const YamlReader& r, const YAML::Node& node, const std::string& key,
+                           Scene& s) {
+  r.expect_map(node, key);
+  r.allow_keys(node, key, {"field", "isovalues", "colors", "opacity"});
+  if (!node["isovalues"]) r.fail(node, child_key(key, "isovalues"), "missing (required)");
+  if (node["field"]) {
+    const std::string field = r.string(node["field"], child_key(key, "field"));
+    if (field != s.field) s.volume->surface_field = field;
+  }
+  parse_surfaces(r, node, key, s);
+  parse_layers(r, node, key, s.surfaces, s.shading);
+}
+
 void parse_coloring(const YamlReader& r, const YAML::Node& node, const std::string& key, Scene& s) {
   if (!node["color_by"]) {
     for (const char* k : {"colormap", "color_range"}) {
@@ -268,11 +283,11 @@ bool valid_scene_name(const std::string& name) {
 
 Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
                   const Trigger& default_trigger) {
-  r.allow_keys(
-      node, key,
-      {"name",   "field",   "isovalues",  "colors", "color_by",    "colormap",    "color_range",
-       "camera", "image",   "background", "lights", "trigger",     "annotations", "orbit",
-       "volume", "shading", "clip",       "lod",    "camera_path", "opacity",     "max_layers"});
+  r.allow_keys(node, key,
+               {"name",        "field",   "isovalues",  "colors",     "color_by", "colormap",
+                "color_range", "camera",  "image",      "background", "lights",   "trigger",
+                "annotations", "orbit",   "volume",     "shading",    "clip",     "lod",
+                "camera_path", "opacity", "max_layers", "surfaces"});
   Scene s;
   for (const char* k : {"name", "field"}) {
     if (!node[k]) r.fail(node, child_key(key, k), "missing (required)");
@@ -285,7 +300,12 @@ Scene parse_scene(const YamlReader& r, const YAML::Node& node, const std::string
   s.field = r.string(node["field"], child_key(key, "field"));
   if (node["volume"]) {
     parse_volume_scene(r, node, key, s);
+    if (node["surfaces"]) parse_volume_surfaces(r, node["surfaces"], child_key(key, "surfaces"), s);
   } else {
+    if (node["surfaces"]) {
+      r.fail(node["surfaces"], child_key(key, "surfaces"),
+             "needs volume (an isosurface scene lists its isovalues itself)");
+    }
     if (!node["isovalues"]) r.fail(node, child_key(key, "isovalues"), "missing (required)");
     parse_surfaces(r, node, key, s);
     parse_coloring(r, node, key, s);

@@ -34,7 +34,13 @@ std::vector<render::OpacityPoint> parse_opacity(const YamlReader& r, const YAML:
 
 void parse_volume_scene(const YamlReader& r, const YAML::Node& node, const std::string& key,
                         Scene& s) {
-  for (const char* k : {"isovalues", "colors", "color_by", "colormap", "color_range", "orbit"}) {
+  for (const char* k : {"isovalues", "colors", "opacity", "max_layers"}) {
+    if (node[k]) {
+      r.fail(node[k], child_key(key, k),
+             "not allowed in a volume scene (its isosurfaces go under surfaces)");
+    }
+  }
+  for (const char* k : {"color_by", "colormap", "color_range", "orbit"}) {
     if (node[k]) r.fail(node[k], child_key(key, k), "not allowed in a volume scene");
   }
   const std::string vkey = child_key(key, "volume");

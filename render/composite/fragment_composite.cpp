@@ -7,7 +7,8 @@ namespace tetray::render {
 namespace {
 
 // Per-pixel fragment counts of a fragment image.
-std::vector<std::uint32_t> pixel_counts(const FragmentImage& image) {
+template <typename F>
+std::vector<std::uint32_t> pixel_counts(const BasicFragmentImage<F>& image) {
   std::vector<std::uint32_t> counts(image.pixel_count());
   for (std::size_t p = 0; p < counts.size(); ++p) counts[p] = image.begin[p + 1] - image.begin[p];
   return counts;
@@ -15,11 +16,13 @@ std::vector<std::uint32_t> pixel_counts(const FragmentImage& image) {
 
 // The root's merge: pixel by pixel, every rank's fragments of that pixel together, of which
 // the pixel keeps its nearest (kept_layers).
-FragmentImage merge_ranks(const FragmentImage& shape, const std::vector<std::uint32_t>& counts,
-                          const std::vector<int>& offsets, const std::vector<Fragment>& all,
-                          int ranks, std::size_t max_layers) {
+template <typename F>
+BasicFragmentImage<F> merge_ranks(const BasicFragmentImage<F>& shape,
+                                  const std::vector<std::uint32_t>& counts,
+                                  const std::vector<int>& offsets, const std::vector<F>& all,
+                                  int ranks, std::size_t max_layers) {
   const std::size_t pixels = shape.pixel_count();
-  FragmentImage out;
+  BasicFragmentImage<F> out;
   out.width = shape.width;
   out.height = shape.height;
   out.begin.reserve(pixels + 1);
@@ -28,9 +31,9 @@ FragmentImage merge_ranks(const FragmentImage& shape, const std::vector<std::uin
   std::vector<std::size_t> cursor(static_cast<std::size_t>(ranks));
   for (int r = 0; r < ranks; ++r) {
     cursor[static_cast<std::size_t>(r)] =
-        static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]) / sizeof(Fragment);
+        static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]) / sizeof(F);
   }
-  std::vector<Fragment> layers;
+  std::vector<F> layers;
   for (std::size_t p = 0; p < pixels; ++p) {
     layers.clear();
     for (std::size_t r = 0; r < cursor.size(); ++r) {
@@ -49,8 +52,10 @@ FragmentImage merge_ranks(const FragmentImage& shape, const std::vector<std::uin
 
 }  // namespace
 
-int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::size_t max_layers,
-                     FragmentImage& merged, FragmentCompositeStats* stats) {
+template <typename F>
+int gather_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
+                     std::size_t max_layers, BasicFragmentImage<F>& merged,
+                     FragmentCompositeStats* stats) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -63,7 +68,7 @@ int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::s
                       static_cast<int>(pixels), MPI_UINT32_T, root, comm);
   if (rc != MPI_SUCCESS) return rc;
   // Fragment bytes per rank; the total must fit one int count.
-  const unsigned long long my_bytes = local.fragments.size() * sizeof(Fragment);
+  const unsigned long long my_bytes = local.fragments.size() * sizeof(F);
   std::vector<unsigned long long> bytes(static_cast<std::size_t>(ranks));
   rc = MPI_Allgather(&my_bytes, 1, MPI_UNSIGNED_LONG_LONG, bytes.data(), 1, MPI_UNSIGNED_LONG_LONG,
                      comm);
@@ -78,7 +83,7 @@ int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::s
       return MPI_ERR_COUNT;
     }
   }
-  std::vector<Fragment> all(is_root ? total / sizeof(Fragment) : 0);
+  std::vector<F> all(is_root ? total / sizeof(F) : 0);
   rc = MPI_Gatherv(local.fragments.data(), static_cast<int>(my_bytes), MPI_BYTE, all.data(),
                    sizes.data(), offsets.data(), MPI_BYTE, root, comm);
   if (rc != MPI_SUCCESS || !is_root) return rc;
@@ -87,14 +92,18 @@ int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::s
   return MPI_SUCCESS;
 }
 
-int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Framebuffer& out,
-                        FragmentCompositeStats* stats) {
+template <typename F>
+int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
+                        Framebuffer& out, FragmentCompositeStats* stats) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  FragmentImage merged;
+  BasicFragmentImage<F> merged;
   const int rc = gather_fragments(local, comm, root, kAllLayers, merged, stats);
   if (rc == MPI_SUCCESS && rank == root) out = resolve(merged);
   return rc;
 }
+
+TETRAY_FRAGMENT_COMPOSITE(, Fragment)
+TETRAY_FRAGMENT_COMPOSITE(, VolumeFragment)
 
 }  // namespace tetray::render

@@ -22,13 +22,26 @@ struct FragmentCompositeStats {
 // together (kept_layers: front to back, up to the first opaque one, at most max_layers);
 // elsewhere it is left alone. Returns MPI_SUCCESS or the MPI error code (MPI_ERR_COUNT when the
 // gathered fragments would not fit one MPI count).
-int gather_fragments(const FragmentImage& local, MPI_Comm comm, int root, std::size_t max_layers,
-                     FragmentImage& merged, FragmentCompositeStats* stats = nullptr);
+// For surface hits (FragmentImage) and volume runs (VolumeFragmentImage).
+template <typename F>
+int gather_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
+                     std::size_t max_layers, BasicFragmentImage<F>& merged,
+                     FragmentCompositeStats* stats = nullptr);
 
 // Collective over `comm`: on `root`, `out` becomes the merged image of all ranks' fragments
 // (the same size on every rank); elsewhere it is left alone. Returns MPI_SUCCESS or the MPI
 // error code (MPI_ERR_COUNT when the gathered fragments would not fit one MPI count).
-int composite_fragments(const FragmentImage& local, MPI_Comm comm, int root, Framebuffer& out,
-                        FragmentCompositeStats* stats = nullptr);
+template <typename F>
+int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
+                        Framebuffer& out, FragmentCompositeStats* stats = nullptr);
+
+#define TETRAY_FRAGMENT_COMPOSITE(EXTERN, F)                                              \
+  EXTERN template int gather_fragments<F>(const BasicFragmentImage<F>&, MPI_Comm, int,    \
+                                          std::size_t, BasicFragmentImage<F>&,            \
+                                          FragmentCompositeStats*);                       \
+  EXTERN template int composite_fragments<F>(const BasicFragmentImage<F>&, MPI_Comm, int, \
+                                             Framebuffer&, FragmentCompositeStats*);
+TETRAY_FRAGMENT_COMPOSITE(extern, Fragment)
+TETRAY_FRAGMENT_COMPOSITE(extern, VolumeFragment)
 
 }  // namespace tetray::render

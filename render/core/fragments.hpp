@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <ranges>
 #include <span>
 #include <vector>
 
@@ -17,27 +18,40 @@
 
 namespace tetray::render {
 
-struct Fragment {
+// `Real` is the precision of the color: float for surface hits (trace_layers), double for
+// volume runs, whose colors are sums that a rank count splits differently (the over operator
+// is not associative in floating point): kept in double up to the final image, the merged
+// colors of any split differ by about 1e-16 relative, far below the float framebuffer's and
+// the written files' rounding (docs/architecture.md §8 says what that guarantees).
+template <typename Real>
+struct BasicFragment {
   float depth_in = 0, depth_out = 0;  // view-axis depths
   std::uint32_t key = kNoHit;         // tie key of the first primitive of the fragment
-  float rgba[4] = {0, 0, 0, 0};       // linear, premultiplied
+  Real rgba[4] = {0, 0, 0, 0};        // linear, premultiplied
 };
+using Fragment = BasicFragment<float>;
+using VolumeFragment = BasicFragment<double>;
 
-inline bool in_front_of(const Fragment& a, const Fragment& b) {
+template <typename Real>
+bool in_front_of(const BasicFragment<Real>& a, const BasicFragment<Real>& b) {
   return wins_over(a.depth_in, a.key, b.depth_in, b.key);
 }
 
 // Pixel p's fragments are fragments[begin[p], begin[p + 1]).
-struct FragmentImage {
+template <typename F>
+struct BasicFragmentImage {
+  using value_type = F;
   int width = 0, height = 0;
   std::vector<std::uint32_t> begin;  // pixel_count + 1 offsets
-  std::vector<Fragment> fragments;
+  std::vector<F> fragments;
 
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * height; }
-  std::span<const Fragment> pixel(std::size_t p) const {
+  std::span<const F> pixel(std::size_t p) const {
     return {fragments.data() + begin[p], fragments.data() + begin[p + 1]};
   }
 };
+using FragmentImage = BasicFragmentImage<Fragment>;
+using VolumeFragmentImage = BasicFragmentImage<VolumeFragment>;
 
 // No cap on the layers a pixel keeps (volume runs).
 inline constexpr std::size_t kAllLayers = ~std::size_t{0};
@@ -46,8 +60,11 @@ inline constexpr std::size_t kAllLayers = ~std::size_t{0};
 // nearest, up to and with the first opaque one (nothing behind it shows) and at most
 // max_layers (transparent surfaces, Wald et al. 2007, §8.5: the nearest layers of all ranks
 // together are those one rank tracing the whole mesh keeps).
-inline std::size_t kept_layers(std::span<Fragment> layers, std::size_t max_layers) {
-  std::sort(layers.begin(), layers.end(), in_front_of);
+// `Layers` is a contiguous range of fragments of one precision (a span or a vector).
+template <std::ranges::contiguous_range Layers>
+std::size_t kept_layers(Layers&& layers, std::size_t max_layers) {
+  std::sort(std::ranges::begin(layers), std::ranges::end(layers),
+            [](const auto& a, const auto& b) { return in_front_of(a, b); });
   const std::size_t count = std::min(layers.size(), max_layers);
   for (std::size_t k = 0; k < count; ++k) {
     if (layers[k].rgba[3] >= 1) return k + 1;
@@ -57,11 +74,12 @@ inline std::size_t kept_layers(std::span<Fragment> layers, std::size_t max_layer
 
 // Front-to-back over of one pixel's kept fragments (kept_layers), with the nearest one's depth
 // and key.
-inline void merge_pixel(std::span<Fragment> layers, float rgba[4], float& depth, std::uint32_t& key,
-                        std::size_t max_layers = kAllLayers) {
-  layers = layers.first(kept_layers(layers, max_layers));
+template <std::ranges::contiguous_range Layers>
+void merge_pixel(Layers&& all, float rgba[4], float& depth, std::uint32_t& key,
+                 std::size_t max_layers = kAllLayers) {
+  const auto layers = std::span(all).first(kept_layers(all, max_layers));
   double out[4] = {0, 0, 0, 0};
-  for (const Fragment& f : layers) {
+  for (const auto& f : layers) {
     const double through = 1.0 - out[3];
     for (int c = 0; c < 4; ++c) out[c] += through * f.rgba[c];
   }
@@ -71,11 +89,12 @@ inline void merge_pixel(std::span<Fragment> layers, float rgba[4], float& depth,
 }
 
 // The flat image of a fragment image: merged color, the nearest fragment's depth and key.
-inline Framebuffer resolve(FragmentImage& image) {
+template <typename F>
+Framebuffer resolve(BasicFragmentImage<F>& image) {
   Framebuffer out(image.width, image.height);
   for (std::size_t p = 0; p < image.pixel_count(); ++p) {
-    std::span<Fragment> layers(image.fragments.data() + image.begin[p],
-                               image.fragments.data() + image.begin[p + 1]);
+    std::span<F> layers(image.fragments.data() + image.begin[p],
+                        image.fragments.data() + image.begin[p + 1]);
     merge_pixel(layers, &out.rgba[4 * p], out.depth[p], out.hit[p]);
   }
   return out;

@@ -106,6 +106,23 @@ bool is_after(double t, std::uint32_t face, const EntryCursor& cursor) {
 
 }  // namespace
 
+std::optional<FaceEntry> entry_behind(const TetVolume& volume, const RayFrame& frame,
+                                      std::uint32_t tet, std::span<const float> second) {
+  const Tet& t = volume.tets[tet];
+  // The ray's line enters a tet through exactly one face (ray_side decides every tie).
+  for (int k = 0; k < 4; ++k) {
+    BoundaryFace face{};
+    for (int c = 0; c < 3; ++c) face.vertex[c] = static_cast<std::uint32_t>(t.v[(k + 1 + c) % 4]);
+    face.opposite_vertex = static_cast<std::uint32_t>(t.v[k]);
+    face.tet = tet;
+    if (const std::optional<ProjectedFace> projected = entering(volume, frame, face)) {
+      return FaceEntry{kBoundaryFace, tet, *projected,
+                       cross_face(volume, frame, *projected, second)};
+    }
+  }
+  return std::nullopt;
+}
+
 BoundaryFaces build_boundary_faces(const TetVolume& volume,
                                    std::span<const BoundaryFaceRef> boundary) {
   BoundaryFaces result;
@@ -156,7 +173,8 @@ void refit_boundary_faces(const TetVolume& volume, BoundaryFaces& boundary) {
 }
 
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
-                                    const RayFrame& frame, double t_from, EntryCursor after) {
+                                    const RayFrame& frame, double t_from, EntryCursor after,
+                                    std::span<const float> second) {
   if (boundary.nodes.empty()) return std::nullopt;
   std::optional<FaceEntry> best;
   double t_best = std::numeric_limits<double>::infinity();
@@ -178,7 +196,7 @@ std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces
     for (std::uint32_t f = node.first; f < node.first + node.count; ++f) {
       const std::optional<ProjectedFace> projected = entering(volume, frame, boundary.faces[f]);
       if (!projected) continue;
-      const FaceCrossing crossing = cross_face(volume, frame, *projected);
+      const FaceCrossing crossing = cross_face(volume, frame, *projected, second);
       if (crossing.t < t_from || !is_after(crossing.t, f, after)) continue;
       if (best && (crossing.t > t_best || (crossing.t == t_best && f > best->face))) continue;
       best = FaceEntry{f, boundary.faces[f].tet, *projected, crossing};

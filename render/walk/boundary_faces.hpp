@@ -59,9 +59,16 @@ struct EntryCursor {
   bool any = false;  // false: no entry yet, every (t, face) is after the cursor
 };
 
+// Where a walk starting inside tet `tet` (the eye's, point_locate.hpp) comes from: the tet's
+// face the ray's line enters it through, behind the eye (crossing.t <= 0), with `face` set to
+// kBoundaryFace. Empty only for a degenerate tet.
+std::optional<FaceEntry> entry_behind(const TetVolume& volume, const RayFrame& frame,
+                                      std::uint32_t tet, std::span<const float> second = {});
+
 // The first face, in (t, face) order and after `after`, through which the ray enters the domain
-// at t >= t_from.
+// at t >= t_from; `second` as for cross_face.
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
-                                    const RayFrame& frame, double t_from, EntryCursor after);
+                                    const RayFrame& frame, double t_from, EntryCursor after,
+                                    std::span<const float> second = {});
 
 }  // namespace tetray::render

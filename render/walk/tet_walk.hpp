@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "render/volume/tet_volume.hpp"
@@ -30,7 +31,8 @@ struct WalkSegment {
   std::uint32_t tet;
   double t_in, t_out;
   double f_in, f_out;
-  bool entered;  // the first tet after entering the domain through a boundary face
+  bool entered;        // the first tet after entering the domain (a boundary face, or the eye)
+  double g_in, g_out;  // the mesh's second field (WalkMesh), or f without one
 };
 
 struct WalkCounters {
@@ -51,6 +53,9 @@ struct WalkMesh {
   const TetVolume& volume;
   const FaceAdjacency<Layout>& adjacency;
   const BoundaryFaces& boundary;
+  // A second point field walked along with the volume's own (per vertex of the vertex store;
+  // empty: none), e.g. the field of a volume scene's isosurfaces.
+  std::span<const float> second_field = {};
 };
 
 // Which face of the tet (entry face p0 p1 p2 counter-clockwise, new vertex p3) the ray leaves
@@ -67,19 +72,37 @@ inline int order_among(std::uint32_t x, const ProjectedFace& face, std::uint32_t
   return int(face.vertex[0] < x) + int(face.vertex[1] < x) + int(face.vertex[2] < x) + int(v3 < x);
 }
 
+// The stretch of a tet the ray starts in from t <= 0 (entry_behind) that lies at t >= 0: the
+// fields at t = 0 by linear interpolation.
+inline FaceCrossing clamp_to_eye(const FaceCrossing& in, const FaceCrossing& out) {
+  if (!(in.t < 0)) return in;
+  const double u = out.t > in.t ? std::min(1.0, -in.t / (out.t - in.t)) : 1.0;
+  return {0.0, std::lerp(in.f, out.f, u), std::lerp(in.g, out.g, u)};
+}
+
 // Walks the ray from t = 0 to t_max, calling visit(const WalkSegment&) for each tet in order
 // along the ray; visit returns false to stop the walk early (early ray termination).
+// `eye_tet`: the tet holding the ray's origin (a camera inside the mesh, point_locate.hpp), where
+// the walk starts before looking for boundary faces; kBoundaryFace: none. Tet20 only (Tet16
+// ignores it: it would need the neighbour behind the eye to decode the next one).
 template <typename Layout, typename Visit>
 void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max, Visit&& visit,
-              WalkCounters& counters) {
+              WalkCounters& counters, std::uint32_t eye_tet = kBoundaryFace) {
   const std::uint64_t step_bound = mesh.volume.tets.size() + 64;
   std::uint64_t steps = 0;
   double t_from = 0;
   EntryCursor cursor;
-  while (const std::optional<FaceEntry> entry =
-             next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor)) {
+  std::optional<FaceEntry> entry;
+  if constexpr (std::is_same_v<Layout, Tet20>) {
+    if (eye_tet != kBoundaryFace)
+      entry = entry_behind(mesh.volume, frame, eye_tet, mesh.second_field);
+  }
+  if (!entry)
+    entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field);
+  for (; entry;
+       entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field)) {
     if (entry->crossing.t > t_max) return;
-    cursor = {entry->crossing.t, entry->face, true};
+    if (entry->face != kBoundaryFace) cursor = {entry->crossing.t, entry->face, true};
     ++counters.entries;
     ProjectedFace face = entry->projected;
     FaceCrossing in = entry->crossing;
@@ -100,9 +123,11 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
           cell.next(previous, order_among(v3, face, v3), order_among(face.vertex[k], face, v3));
       face.vertex[k] = v3;
       face.point[k] = p3;
-      FaceCrossing out = cross_face(mesh.volume, frame, face);
+      FaceCrossing out = cross_face(mesh.volume, frame, face, mesh.second_field);
+      in = clamp_to_eye(in, out);
       out.t = std::max(out.t, in.t);
-      if (!visit(WalkSegment{tet, in.t, out.t, in.f, out.f, entered}) || out.t >= t_max) return;
+      const WalkSegment segment{tet, in.t, out.t, in.f, out.f, entered, in.g, out.g};
+      if (!visit(segment) || out.t >= t_max) return;
       entered = false;
       if (next == kBoundaryFace) {
         // Rounding may put the next entry a few ulps before this exit.

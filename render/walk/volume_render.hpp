@@ -4,13 +4,19 @@
 // run of tets from an entry to the next exit of the domain becomes one fragment, so a
 // non-convex domain gives several per pixel and ranks' fragments merge in depth order
 // (render/core/fragments.hpp, render/composite/fragment_composite.hpp). A run stops early once
-// its opacity reaches `termination`.
+// its opacity reaches `termination`. Isosurfaces, of the volume's field or of a second one, are
+// layers along the walk (surface_crossing.hpp): the stretch is split where the ray crosses one
+// and the lit surface is laid over the run in order, so surfaces and volume make one image.
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
+#include "render/bvh/bvh.hpp"
 #include "render/core/fragments.hpp"
 #include "render/trace/camera.hpp"
+#include "render/trace/trace.hpp"
 #include "render/walk/boundary_faces.hpp"
 #include "render/walk/face_adjacency.hpp"
 #include "render/walk/transfer_function.hpp"
@@ -23,6 +29,15 @@ struct VolumeRenderOptions {
   // > 0: fixed-step sampling at this distance (fixed_step.hpp) instead of the exact integral,
   // the baseline of the error-against-time study.
   double sample_step = 0;
+  // Isosurfaces met along the walk, with their colors and opacities, of `surface_field` (per
+  // vertex of the vertex store; empty: the volume's own field), lit by the headlight with
+  // `ambient` (TraceOptions::ambient).
+  std::vector<IsoSurface> surfaces;
+  std::span<const float> surface_field;
+  double ambient = 0.15;
+  // The tet holding the camera's eye (locate_eye): every ray's walk starts there; kBoundaryFace:
+  // the eye lies outside this rank's tets, rays start at the boundary faces they enter through.
+  std::uint32_t eye_tet = kBoundaryFace;
 };
 
 struct VolumeRenderStats {
@@ -43,10 +58,13 @@ struct WalkStructure {
 };
 WalkStructure build_walk_structure(const TetVolume& volume);
 
+// The tet of `volume` holding the eye of `camera` (world coordinates), or kBoundaryFace.
+std::uint32_t locate_eye(const TetVolume& volume, const Bvh& bvh, const Camera& camera);
+
 // The fragments of every pixel of `camera` (world coordinates; the volume's are local). Parallel
 // over rows in the calling oneTBB arena; the result does not depend on the thread count.
-FragmentImage render_volume(const TetVolume& volume, const WalkStructure& walk,
-                            const Camera& camera, const VolumeRenderOptions& options,
-                            VolumeRenderStats* stats = nullptr);
+VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& walk,
+                                  const Camera& camera, const VolumeRenderOptions& options,
+                                  VolumeRenderStats* stats = nullptr);
 
 }  // namespace tetray::render

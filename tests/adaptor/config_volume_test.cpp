@@ -1,5 +1,5 @@
-// The volume key of a scene: the transfer function's parts and their defaults; mistakes name
-// the key.
+// The volume key of a scene: the transfer function's parts and their defaults, the surfaces
+// along the walk; mistakes name the key.
 #include <gtest/gtest.h>
 
 #include "config_parse.hpp"
@@ -31,6 +31,29 @@ TEST(ConfigVolume, TransferFunctionAndDefaults) {
   EXPECT_EQ(r.config->scenes[0].volume->termination, 0.99);
 }
 
+TEST(ConfigVolume, SurfacesOfTheVolumesFieldOrAnother) {
+  ParseResult r = parse(
+      "    volume: {opacity: [[0, 1]]}\n"
+      "    surfaces: {field: interior, isovalues: [0.5, 0.8], colors: [[1, 0, 0], [0, 0, 1]],\n"
+      "               opacity: [0.4, 1]}\n");
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const Scene& s = r.config->scenes[0];
+  EXPECT_EQ(s.volume->surface_field, "interior");
+  ASSERT_EQ(s.surfaces.size(), 2u);
+  EXPECT_EQ(s.surfaces[0].value, 0.5f);
+  EXPECT_EQ(s.surfaces[0].opacity, 0.4f);
+  EXPECT_EQ(s.surfaces[1].color.b, 1.0f);
+  EXPECT_EQ(s.surfaces[1].opacity, 1.0f);
+  // Without a field, or naming the scene's own: the volume's field.
+  for (const char* field : {"", "field: f, "}) {
+    r = parse("    volume: {opacity: [[0, 1]]}\n    surfaces: {" + std::string(field) +
+              "isovalues: [0]}\n");
+    ASSERT_TRUE(r.error.empty()) << r.error;
+    EXPECT_TRUE(r.config->scenes[0].volume->surface_field.empty());
+    EXPECT_EQ(r.config->scenes[0].surfaces.size(), 1u);
+  }
+}
+
 TEST(ConfigVolume, MistakesNameTheKey) {
   const std::pair<const char*, const char*> cases[] = {
       {"    isovalues: [0]\n    volume: {opacity: [[0, 1]]}\n", "scenes[0].isovalues: not allowed"},
@@ -42,6 +65,19 @@ TEST(ConfigVolume, MistakesNameTheKey) {
       {"    volume: {opacity: [[0, 1]], termination: 0.1}\n", "scenes[0].volume.termination"},
       {"    volume: {opacity: [[0, 1]], step: 2}\n", "step"},
       {"    colors: [[1, 1, 1]]\n", "scenes[0].isovalues: missing"},
+      {"    volume: {opacity: [[0, 1]]}\n    opacity: [0.5]\n", "scenes[0].opacity: not allowed"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: {field: g}\n",
+       "scenes[0].surfaces.isovalues: missing"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: {isovalues: [0, 1], opacity: [0.5]}\n",
+       "scenes[0].surfaces.opacity: give one per isovalue"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: {isovalues: [0], colors: [[2, 0, 0]]}\n",
+       "scenes[0].surfaces.colors[0]"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: {isovalues: [0], max_layers: 2}\n",
+       "max_layers"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: {isovalues: [0], field: ''}\n",
+       "scenes[0].surfaces.field: expected a non-empty string"},
+      {"    volume: {opacity: [[0, 1]]}\n    surfaces: [0.5]\n", "scenes[0].surfaces"},
+      {"    isovalues: [0]\n    surfaces: {isovalues: [0]}\n", "scenes[0].surfaces: needs volume"},
   };
   for (const auto& [yaml, expected] : cases) {
     const ParseResult r = parse(yaml);

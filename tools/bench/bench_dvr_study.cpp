@@ -6,10 +6,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {
@@ -36,7 +36,7 @@ render::Framebuffer render_frame(const render::TetVolume& volume, const render::
                                  const render::Camera& camera, double sample_step) {
   render::VolumeRenderOptions options = dvr_options(1.0);
   options.sample_step = sample_step;
-  render::FragmentImage fragments = render::render_volume(volume, walk, camera, options);
+  render::VolumeFragmentImage fragments = render::render_volume(volume, walk, camera, options);
   return render::resolve(fragments);
 }
 

@@ -24,10 +24,10 @@
 #include <functional>
 
 #include "bench_reference_vtk.hpp"
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "bench_walk.hpp"
 #include "render/walk/volume_render.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {
@@ -129,7 +129,7 @@ render::Framebuffer tetray_frame(const GyroidTwist& scene, const render::Camera&
   render::Bvh bvh;
   load_scene(scene, volume, bvh);
   const render::WalkStructure walk = render::build_walk_structure(volume);
-  render::FragmentImage fragments;
+  render::VolumeFragmentImage fragments;
   ms = best_ms(kRepetitions,
                [&] { fragments = render::render_volume(volume, walk, camera, dvr_options(1.0)); });
   return render::resolve(fragments);

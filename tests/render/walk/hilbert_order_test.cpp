@@ -67,9 +67,9 @@ TEST(HilbertOrder, SameTetsAndTheSameVolumeImage) {
   options.transfer = {&kGray, -1, 1, {{-1, 0.2}, {0, 2}, {1, 0.5}}, 1};
   options.termination = 1;
   const render::Camera camera = look_at({-2.2, 1.4, 3.1}, {0, 0, 0}, 40, 24, 24);
-  render::FragmentImage a = render::render_volume(
+  render::VolumeFragmentImage a = render::render_volume(
       scene.volume, render::build_walk_structure(scene.volume), camera, options);
-  render::FragmentImage b =
+  render::VolumeFragmentImage b =
       render::render_volume(sorted, render::build_walk_structure(sorted), camera, options);
   const render::Framebuffer ia = render::resolve(a), ib = render::resolve(b);
   ASSERT_EQ(ia.rgba.size(), ib.rgba.size());

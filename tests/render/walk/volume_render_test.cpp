@@ -2,15 +2,22 @@
 // emission-absorption with constant and linear extinction and color; whole images of a box with
 // a constant field (Beer-Lambert) and a linear field (closed-form optical depth and emission);
 // and a jittered box with a random field against dense double-precision sampling along the
-// brute-force tets; early termination's effect is bounded by its threshold.
+// brute-force tets; early termination's effect is bounded by its threshold. Surfaces along the
+// walk: where the walk meets the isosurfaces of a second field against the double-precision
+// reference, and a constant volume in front of an opaque or a transparent plane against the
+// closed form (Beer-Lambert up to the plane, the lit plane, the volume behind it).
 #include "render/walk/volume_render.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "render/walk/segment_integral.hpp"
+#include "render/walk/surface_crossing.hpp"
+#include "render/walk/tet_walk.hpp"
 #include "support/reference_camera.hpp"
+#include "support/reference_intersector.hpp"
 #include "walk_meshes.hpp"
 
 namespace tetray::test {
@@ -91,14 +98,20 @@ std::pair<double, double> box_chord(Vec3d o, Vec3d d) {
   return {t0, std::max(t0, t1)};
 }
 
-// Per pixel of a camera onto the box: the fragments' merged color against `expected(o, d,
-// t0, t1) -> {rgb, alpha}`.
+render::Camera box_camera() {
+  const int side = scaled_side(48);
+  return look_at({0.6, -0.9, 4.5}, {0, 0.1, 0}, 38, side, side);
+}
+
+// Per pixel of `camera` (by default onto the box from outside): the fragments' merged color
+// against `expected(o, d, t0, t1) -> {rgb, alpha}`.
 template <typename Expected>
 void expect_box_image(const VolumeScene& v, const render::VolumeRenderOptions& options,
-                      Expected&& expected, double tolerance) {
-  const int side = scaled_side(48);
-  const render::Camera camera = look_at({0.6, -0.9, 4.5}, {0, 0.1, 0}, 38, side, side);
-  render::FragmentImage fragments = render::render_volume(v.scene.volume, v.walk, camera, options);
+                      Expected&& expected, double tolerance,
+                      const render::Camera& camera = box_camera()) {
+  const int side = camera.width;
+  render::VolumeFragmentImage fragments =
+      render::render_volume(v.scene.volume, v.walk, camera, options);
   const render::Framebuffer image = render::resolve(fragments);
   const ReferenceCamera reference(camera);
   int covered = 0;
@@ -190,7 +203,8 @@ TEST(VolumeRender, RandomFieldMatchesDenseSampling) {
   options.termination = 1;
   const int side = 12 / (kSanitizerSlowdown > 1 ? 2 : 1);
   const render::Camera camera = look_at({-2.2, 1.4, 3.1}, {0.1, 0, 0}, 40, side, side);
-  render::FragmentImage fragments = render::render_volume(random.volume, walk, camera, options);
+  render::VolumeFragmentImage fragments =
+      render::render_volume(random.volume, walk, camera, options);
   const render::Framebuffer image = render::resolve(fragments);
   const ReferenceCamera reference(camera);
   for (int j = 0; j < side; ++j) {
@@ -213,9 +227,10 @@ TEST(VolumeRender, EarlyTerminationStopsAtTheThreshold) {
   const render::Camera camera = look_at({0.2, 0.1, 4}, {0, 0, 0}, 20, 16, 16);
   render::VolumeRenderStats full, early;
   options.termination = 1;
-  render::FragmentImage all = render::render_volume(v.scene.volume, v.walk, camera, options, &full);
+  render::VolumeFragmentImage all =
+      render::render_volume(v.scene.volume, v.walk, camera, options, &full);
   options.termination = 0.95;
-  render::FragmentImage cut =
+  render::VolumeFragmentImage cut =
       render::render_volume(v.scene.volume, v.walk, camera, options, &early);
   EXPECT_LT(early.tets_visited, full.tets_visited / 2);
   EXPECT_GT(early.terminated_runs, 0u);
@@ -224,6 +239,110 @@ TEST(VolumeRender, EarlyTerminationStopsAtTheThreshold) {
     if (b.rgba[4 * p + 3] == 0) continue;
     EXPECT_GE(b.rgba[4 * p + 3], 0.95f);
     EXPECT_NEAR(a.rgba[4 * p + 3], b.rgba[4 * p + 3], 0.05);
+  }
+}
+
+// A point field per vertex of `volume`'s store, from its values per caller point.
+std::vector<float> per_vertex(const render::TetVolume& volume, const std::vector<double>& values) {
+  std::vector<float> out(volume.vertices.size());
+  for (std::size_t p = 0; p < values.size(); ++p) {
+    const std::uint32_t v =
+        volume.point_vertex.empty() ? static_cast<std::uint32_t>(p) : volume.point_vertex[p];
+    if (v != render::kNoVertex) out[v] = static_cast<float>(values[p]);
+  }
+  return out;
+}
+
+TEST(VolumeSurfaces, CrossingsMatchTheReference) {
+  // The volume's field is one random field, the surfaces' another: the walk carries both.
+  const BoxMesh mesh = jittered_box(4, 0.2);
+  const std::vector<double> g = random_field(mesh.point_count(), 5);
+  const RenderScene scene = load_scene(mesh.points, mesh.tets, random_field(mesh.point_count(), 9));
+  const RenderScene of_g = load_scene(mesh.points, mesh.tets, g);
+  const std::vector<float> second = per_vertex(scene.volume, g);
+  const render::WalkStructure walk = render::build_walk_structure(scene.volume);
+  const render::WalkMesh<render::Tet20> walk_mesh{scene.volume, walk.adjacency, walk.boundary,
+                                                  second};
+  const std::vector<double> isovalues = {-0.3, 0.1, 0.45};
+  const std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
+  const ReferenceIntersector reference(of_g.volume, isovalues);
+  const int side = scaled_side(32);
+  const ReferenceCamera camera(look_at({-2.4, 1.3, 3.0}, {0.1, 0, 0}, 40, side, side));
+  int compared = 0;
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const Vec3d d = camera.pixel_direction(i, j);
+      const ReferenceLayers want = reference.trace_layers(camera, d);
+      if (want.isopolygon_edge_distance < 2 * kGrazingDistance ||
+          want.closest_layers < 2 * kGrazingDistance)
+        continue;
+      render::WalkCounters counters;
+      std::vector<std::pair<double, int>> got;
+      for (const render::WalkSegment& s :
+           render::walk_segments(walk_mesh, render::RayFrame(camera.eye() - scene.volume.origin, d),
+                                 std::numeric_limits<double>::infinity(), 1 << 20, counters)) {
+        render::SurfaceCrossing c[render::kMaxIsovalues];
+        const int n = render::surface_crossings(surfaces, s.g_in, s.g_out, c);
+        for (int k = 0; k < n; ++k)
+          got.emplace_back(std::lerp(s.t_in, s.t_out, c[k].u), c[k].surface);
+      }
+      ASSERT_EQ(got.size(), want.layers.size()) << "pixel " << i << ", " << j;
+      for (std::size_t k = 0; k < got.size(); ++k) {
+        EXPECT_NEAR(got[k].first, want.layers[k].t, 1e-6) << "pixel " << i << ", " << j;
+        EXPECT_EQ(got[k].second, want.layers[k].surface) << "pixel " << i << ", " << j;
+      }
+      compared += !got.empty();
+    }
+  }
+  EXPECT_GT(compared, side * side / 4);
+}
+
+// The box's constant volume (extinction k, orange) and the plane x = `plane` of a lit surface
+// (headlight, |cos| = |d.x|) along the ray's chord [t0, t1].
+std::array<double, 4> volume_and_plane(Vec3d o, Vec3d d, double t0, double t1, double k,
+                                       double plane, render::Rgb rgb, double opacity,
+                                       double ambient) {
+  const double ts = (plane - o.x) / d.x;
+  const bool crossed = ts > t0 && ts < t1;
+  const double t_front = std::exp(-k * ((crossed ? ts : t1) - t0));
+  std::array<double, 4> c = {1.0 * (1 - t_front), 0.5 * (1 - t_front), 0.25 * (1 - t_front),
+                             1 - t_front};
+  if (!crossed) return c;
+  const double light = ambient + (1 - ambient) * std::abs(d.x);
+  const double back = 1 - std::exp(-k * (t1 - ts));  // the volume behind the plane
+  const double surface[3] = {rgb.r, rgb.g, rgb.b};
+  const double volume[3] = {1.0, 0.5, 0.25};
+  for (int ch = 0; ch < 3; ++ch)
+    c[ch] += t_front * (opacity * light * surface[ch] + (1 - opacity) * back * volume[ch]);
+  c[3] += t_front * (opacity + (1 - opacity) * back);
+  return c;
+}
+
+TEST(VolumeSurfaces, ConstantVolumeBeforeAPlaneIsBeerLambert) {
+  // Volume: constant field, extinction 0.8, orange. Surface: x = 0.2 of the field g = x. Seen
+  // from outside the box, and from an eye inside it, whose rays start in the eye's tet.
+  const BoxMesh mesh = jittered_box(4, 0.15);
+  const VolumeScene v(mesh, [](Vec3d) { return 0.3; });
+  const std::vector<double> g = sample_field(mesh.points, [](Vec3d x) { return x.x; });
+  const std::vector<float> second = per_vertex(v.scene.volume, g);
+  const double k = 0.8, ambient = 0.25, plane = 0.2;
+  const render::Rgb rgb{0.2f, 0.6f, 1.0f};
+  for (const float opacity : {1.0f, 0.4f}) {
+    render::VolumeRenderOptions options;
+    options.transfer = transfer(kOrange, 0, 1, {{0, k}});
+    options.termination = 1;
+    options.surfaces = {{static_cast<float>(plane), rgb, opacity}};
+    options.surface_field = second;
+    options.ambient = ambient;
+    const auto expected = [&](Vec3d o, Vec3d d, double t0, double t1) {
+      return volume_and_plane(o, d, t0, t1, k, plane, rgb, opacity, ambient);
+    };
+    expect_box_image(v, options, expected, 2e-6);
+    const render::Camera inside =
+        look_at({-0.35, 0.1, 0.3}, {1, 0.4, -0.5}, 70, scaled_side(40), scaled_side(40));
+    options.eye_tet = render::locate_eye(v.scene.volume, v.scene.bvh, inside);
+    ASSERT_NE(options.eye_tet, render::kBoundaryFace);
+    expect_box_image(v, options, expected, 2e-6, inside);
   }
 }
 

@@ -1,0 +1,108 @@
+// Volume scenes through the adaptor on a split mesh (docs/architecture.md §8): the gyroid-twist
+// mesh with a linear temperature volume-rendered, alone and with isosurfaces of the gyroid field
+// along the walk (one transparent, one opaque), rendered by rank 0 alone and by all ranks with
+// the tets split into slabs, writes the very bytes of the one-rank PNG and EXR files: a rank's
+// runs keep their colors in double, so the over operator's different association on a split
+// changes them far below the files' rounding. The surfaces show: the image differs from the
+// volume's alone. A camera inside the mesh starts every ray in the eye's tet on the rank
+// holding it (the others' rays enter their slabs through boundary faces): every pixel sees
+// the volume, and the bytes are again those of one rank.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "shared_dir.hpp"
+#include "slab_partition.hpp"
+#include "support/png_read.hpp"
+#include "tetray/adaptor.hpp"
+#include "tools/scenes/box_mesh.hpp"
+
+namespace tetray::testing {
+namespace {
+
+struct VolumeScene {
+  GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
+  std::vector<double> temperature;  // linear in the position
+};
+
+const VolumeScene& scene() {
+  static const VolumeScene s = [] {
+    VolumeScene v;
+    const std::vector<double>& p = v.gyroid.mesh.points;
+    for (std::size_t k = 0; k < p.size(); k += 3)
+      v.temperature.push_back(0.5 + 0.3 * p[k] - 0.15 * p[k + 1] + 0.1 * p[k + 2]);
+    return v;
+  }();
+  return s;
+}
+
+const char* const kScenes[] = {"fog", "skin", "inside"};
+
+std::string config(const std::string& directory) {
+  const std::string volume =
+      "    field: temperature\n"
+      "    volume: {colormap: coolwarm, range: [0, 1], opacity: [[0, 0.1], [1, 1.2]],\n"
+      "             unit_distance: 0.5, termination: 1}\n"
+      "    image: {width: 320, height: 320}\n";
+  const std::string outside =
+      "    camera: {eye: [2.5, 1.8, 3.2], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n";
+  const std::string surfaces =
+      "    surfaces: {field: f, isovalues: [0.5, 0], opacity: [0.4, 1],\n"
+      "               colors: [[0.9, 0.9, 0.9], [0.2, 0.8, 0.3]]}\n";
+  const std::string inside =
+      "    camera: {eye: [-0.1, 0.15, 0.2], look_at: [1, 0.5, -0.6], up: [0, 1, 0], fov_deg: 70}\n";
+  return "output: {directory: " + directory + ", formats: [png, exr], quiet: true}\n" +
+         "scenes:\n  - name: fog\n" + volume + outside + "  - name: skin\n" + volume + outside +
+         surfaces + "  - name: inside\n" + volume + inside + surfaces;
+}
+
+void render(MPI_Comm comm, const std::string& directory, const Slab& part) {
+  TetsView tets = TetsView::of(std::span<const std::int64_t>(part.tets));
+  tets.global_ids = part.ids.data();
+  const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)), tets};
+  const FieldView fields[] = {
+      FieldView::of("f", std::span<const double>(scene().gyroid.field)),
+      FieldView::of("temperature", std::span<const double>(scene().temperature))};
+  render_step_zero(comm, config(directory), mesh, fields);
+}
+
+std::string bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string file(const std::string& run, const std::string& name, const char* format) {
+  return run + "/" + name + "/" + name + "_000000." + format;
+}
+
+TEST(VolumeAcrossRanks, WritesTheBytesOfOneRank) {
+  const SharedDir shared("volume_across_ranks");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  if (rank() == 0) render(MPI_COMM_SELF, one, x_slab(scene().gyroid.mesh, 0, 1));
+  render(MPI_COMM_WORLD, split, x_slab(scene().gyroid.mesh, rank(), world_size()));
+  if (rank() != 0) return;
+  for (const char* name : kScenes) {
+    for (const char* format : {"png", "exr"}) {
+      const std::string a = bytes(file(one, name, format));
+      EXPECT_FALSE(a.empty()) << name << " " << format;
+      EXPECT_TRUE(a == bytes(file(split, name, format)))
+          << name << " " << format << " on " << world_size() << " ranks";
+    }
+  }
+  const PngPixels fog = read_png_rgba8(file(one, "fog", "png"));
+  const PngPixels skin = read_png_rgba8(file(one, "skin", "png"));
+  ASSERT_TRUE(fog.error.empty() && skin.error.empty()) << fog.error << skin.error;
+  EXPECT_GT(differing_pixels(fog, skin), fog.rgba.size() / 4 / 5) << "the surfaces must show";
+  const PngPixels inside = read_png_rgba8(file(one, "inside", "png"));
+  ASSERT_TRUE(inside.error.empty()) << inside.error;
+  std::size_t clear = 0;
+  for (std::size_t p = 3; p < inside.rgba.size(); p += 4) clear += inside.rgba[p] == 0;
+  EXPECT_EQ(clear, 0u) << "every ray from inside the mesh must see the volume";
+}
+
+}  // namespace
+}  // namespace tetray::testing
