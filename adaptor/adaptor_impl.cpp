@@ -485,13 +485,20 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
                                   s.surface_field);
         options.surface_field = s.surface_field;
       }
-      const render::Camera camera = camera_for(s, ranges_.scenes[k]);
-      // A camera inside this rank's tets starts every ray's walk in the eye's tet.
-      options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
-      s.fragments = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
-                                          camera, options);
-      s.images.assign(1, render::resolve(s.fragments));  // a volume scene has one view
-      s.trace_ms.assign(1, watch.ms());
+      s.fragments.resize(s.views.size());
+      s.images.resize(s.views.size());
+      s.trace_ms.assign(s.views.size(), 0);
+      s.trace_ms[0] = watch.ms();  // the transfer function and the surfaces' field, once
+      for (std::size_t v = 0; v < s.views.size(); ++v) {
+        const render::Stopwatch view_watch;
+        const render::Camera camera = view_camera(s, k, v);
+        // A camera inside this rank's tets starts every ray's walk in the eye's tet.
+        options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
+        s.fragments[v] = render::render_volume(
+            volume.volume(), walks_[s.volume].get(volume.volume()), camera, options);
+        s.images[v] = render::resolve(s.fragments[v]);
+        s.trace_ms[v] += view_watch.ms();
+      }
       continue;
     }
     render::TraceOptions options = trace_options(s);
@@ -657,7 +664,7 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   if (comm_.size > 1) {
     const render::Stopwatch watch;
     const int rc = s.config.volume
-                       ? render::composite_fragments(s.fragments, comm_.comm, writer, image)
+                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
                        : render::composite(image, comm_.comm, {.root = writer});
     if (rc != MPI_SUCCESS) {
       return {StatusCode::mpi_error,

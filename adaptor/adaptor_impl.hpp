@@ -64,7 +64,8 @@ class Adaptor::Impl {
     std::vector<View> views;                  // one without an orbit
     std::vector<render::Framebuffer> images;  // per view
     std::vector<double> trace_ms;             // per view
-    render::VolumeFragmentImage fragments;    // a volume scene's, before compositing
+    std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
+                                                         // compositing
     // Per view, one term per shadowing light (scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
     std::vector<render::LayerImage> layers;  // per view, a transparent scene's (scene_layers.hpp)

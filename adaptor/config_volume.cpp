@@ -40,7 +40,7 @@ void parse_volume_scene(const YamlReader& r, const YAML::Node& node, const std::
              "not allowed in a volume scene (its isosurfaces go under surfaces)");
     }
   }
-  for (const char* k : {"color_by", "colormap", "color_range", "orbit"}) {
+  for (const char* k : {"color_by", "colormap", "color_range"}) {
     if (node[k]) r.fail(node[k], child_key(key, k), "not allowed in a volume scene");
   }
   const std::string vkey = child_key(key, "volume");

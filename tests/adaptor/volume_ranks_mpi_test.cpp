@@ -6,7 +6,9 @@
 // changes them far below the files' rounding. The surfaces show: the image differs from the
 // volume's alone. A camera inside the mesh starts every ray in the eye's tet on the rank
 // holding it (the others' rays enter their slabs through boundary faces): every pixel sees
-// the volume, and the bytes are again those of one rank.
+// the volume, and the bytes are again those of one rank. An orbit renders each of its views
+// from the step's one walk structure: its first view (azimuth and elevation 0) is the plain
+// scene's image, the others differ, and every view's bytes are again those of one rank.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -41,6 +43,7 @@ const VolumeScene& scene() {
 }
 
 const char* const kScenes[] = {"fog", "skin", "inside"};
+const char* const kOrbitViews[] = {"view000", "view001", "view002", "view003"};
 
 std::string config(const std::string& directory) {
   const std::string volume =
@@ -55,9 +58,11 @@ std::string config(const std::string& directory) {
       "               colors: [[0.9, 0.9, 0.9], [0.2, 0.8, 0.3]]}\n";
   const std::string inside =
       "    camera: {eye: [-0.1, 0.15, 0.2], look_at: [1, 0.5, -0.6], up: [0, 1, 0], fov_deg: 70}\n";
+  const std::string orbit = "    orbit: {azimuth: [0, 120], elevation: [0, 25]}\n";
   return "output: {directory: " + directory + ", formats: [png, exr], quiet: true}\n" +
          "scenes:\n  - name: fog\n" + volume + outside + "  - name: skin\n" + volume + outside +
-         surfaces + "  - name: inside\n" + volume + inside + surfaces;
+         surfaces + "  - name: inside\n" + volume + inside + surfaces + "  - name: orbit\n" +
+         volume + outside + orbit;
 }
 
 void render(MPI_Comm comm, const std::string& directory, const Slab& part) {
@@ -75,8 +80,33 @@ std::string bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-std::string file(const std::string& run, const std::string& name, const char* format) {
-  return run + "/" + name + "/" + name + "_000000." + format;
+std::string file(const std::string& run, const std::string& name, const char* format,
+                 const std::string& view = "") {
+  return run + "/" + name + "/" + name + "_000000" + (view.empty() ? "" : "_" + view) + "." +
+         format;
+}
+
+// The orbit scene's views of the runs `one` and `split` (on rank 0).
+void expect_orbit_views(const std::string& one, const std::string& split) {
+  for (const char* view : kOrbitViews) {
+    for (const char* format : {"png", "exr"}) {
+      const std::string a = bytes(file(one, "orbit", format, view));
+      EXPECT_FALSE(a.empty()) << view << " " << format;
+      EXPECT_TRUE(a == bytes(file(split, "orbit", format, view)))
+          << view << " " << format << " on " << world_size() << " ranks";
+    }
+  }
+  const PngPixels fog = read_png_rgba8(file(one, "fog", "png"));
+  ASSERT_TRUE(fog.error.empty()) << fog.error;
+  for (const char* view : kOrbitViews) {
+    const PngPixels image = read_png_rgba8(file(one, "orbit", "png", view));
+    ASSERT_TRUE(image.error.empty()) << image.error;
+    if (view == kOrbitViews[0]) {
+      EXPECT_EQ(differing_pixels(fog, image), 0u) << "the first view is the scene's own camera";
+    } else {
+      EXPECT_GT(differing_pixels(fog, image), fog.rgba.size() / 4 / 10) << view;
+    }
+  }
 }
 
 TEST(VolumeAcrossRanks, WritesTheBytesOfOneRank) {
@@ -102,6 +132,7 @@ TEST(VolumeAcrossRanks, WritesTheBytesOfOneRank) {
   std::size_t clear = 0;
   for (std::size_t p = 3; p < inside.rgba.size(); p += 4) clear += inside.rgba[p] == 0;
   EXPECT_EQ(clear, 0u) << "every ray from inside the mesh must see the volume";
+  expect_orbit_views(one, split);
 }
 
 }  // namespace
