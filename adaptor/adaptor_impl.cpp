@@ -531,7 +531,7 @@ Status Adaptor::Impl::trace_scenes(std::span<const FieldView> fields) {
                              options);
         if (config_.output.per_rank_images && v == 0) {
           render::FragmentImage mine = s.layers[0].color;
-          s.images[0] = render::flatten_layers(mine, camera);
+          render::flatten_layers(mine, camera, s.images[0]);
         }
       } else {
         std::vector<render::Framebuffer>* terms = shadows ? &s.shadow_terms[v] : nullptr;

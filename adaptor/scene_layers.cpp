@@ -80,7 +80,7 @@ Status composite_layers(const render::LayerImage& local, const ShadowScene& scen
     shadowed = shadow_layers(merged, terms, scene, comm, writer);
     if (shadowed.code == StatusCode::mpi_error) return shadowed;
   }
-  if (comm.rank == writer) image = render::flatten_layers(merged, scene.camera);
+  if (comm.rank == writer) render::flatten_layers(merged, scene.camera, image);
   return shadowed;
 }
 

@@ -8,27 +8,32 @@ namespace tetray::render {
 
 void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> shadow_terms,
                          int layer, std::span<const std::uint8_t> occluded) {
-  for (std::size_t p = 0; p < color.pixel_count(); ++p) {
-    if (occluded[p] == 0 || color.begin[p + 1] - color.begin[p] <= std::uint32_t(layer)) continue;
+  // In parallel, as the other per-pixel passes of a frame: each pixel's layer is its own.
+  tbb::parallel_for(std::size_t{0}, color.pixel_count(), [&](std::size_t p) {
+    if (occluded[p] == 0 || color.begin[p + 1] - color.begin[p] <= std::uint32_t(layer)) return;
     const std::size_t f = color.begin[p] + static_cast<std::size_t>(layer);
     for (std::size_t j = 0; j < shadow_terms.size(); ++j) {
       if (!(occluded[p] & (1u << j))) continue;
       for (int c = 0; c < 3; ++c)
         color.fragments[f].rgba[c] -= shadow_terms[j].fragments[f].rgba[c];
     }
-  }
+  });
 }
 
 // resolve() pixel by pixel in parallel: a megapixel of layers takes a while to sort and blend.
-Framebuffer flatten_layers(FragmentImage& layers, const Camera& camera) {
-  Framebuffer image(layers.width, layers.height);
+void flatten_layers(FragmentImage& layers, const Camera& camera, Framebuffer& image) {
+  // Every pixel is written below, so an image of the right size is reused as it is (allocating
+  // a megapixel image each frame cost a third of the blend).
+  if (image.width != layers.width || image.height != layers.height ||
+      image.pixel_count() != layers.pixel_count() || image.rgba.size() != 4 * image.pixel_count() ||
+      image.hit.size() != image.pixel_count())
+    image = Framebuffer(layers.width, layers.height);
   tbb::parallel_for(std::size_t{0}, layers.pixel_count(), [&](std::size_t p) {
     const std::span<Fragment> pixel(layers.fragments.data() + layers.begin[p],
                                     layers.fragments.data() + layers.begin[p + 1]);
     merge_pixel(pixel, &image.rgba[4 * p], image.depth[p], image.hit[p]);
   });
   layer_view_depths(layers, camera, 0, image.depth);
-  return image;
 }
 
 }  // namespace tetray::render

@@ -19,7 +19,7 @@ void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> sh
                          int layer, std::span<const std::uint8_t> occluded);
 
 // The blended image of the layers (sorted and kept as the fragment merge keeps them), with the
-// first layer's view depth and key.
-Framebuffer flatten_layers(FragmentImage& layers, const Camera& camera);
+// first layer's view depth and key, into `image` (its storage reused).
+void flatten_layers(FragmentImage& layers, const Camera& camera, Framebuffer& image);
 
 }  // namespace tetray::render

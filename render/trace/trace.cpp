@@ -240,13 +240,19 @@ void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats, NodeFil
 }
 
 // Depth peeling (trace_layers): each pixel's layers go to fixed slots, max_layers per pixel,
-// written by the packets in parallel and packed into the LayerImage afterwards.
+// written by the packets in parallel and packed into the LayerImage afterwards; the slots are
+// the LayerImage's own (slot_count, slots), kept from frame to frame.
 struct LayerSlots {
   int max_layers = 0;
-  float opacity[kMaxIsovalues];                     // per sorted isovalue
-  std::vector<std::uint8_t> count;                  // layers per pixel
-  std::vector<Fragment> color;                      // pixel p's layer l at p * max_layers + l
-  std::vector<std::vector<Fragment>> shadow_terms;  // per shadowing light, the same layout
+  float opacity[kMaxIsovalues];   // per sorted isovalue
+  std::uint8_t* count = nullptr;  // layers per pixel
+  Fragment* color = nullptr;      // pixel p's layer l at p * max_layers + l
+  std::size_t size = 0;           // slots of the color, and of each shadowing light after it
+  int shadowing = 0;              // shadowing lights
+
+  Fragment* shadow_term(int light) const {
+    return color + static_cast<std::size_t>(light + 1) * size;
+  }
 };
 
 // Layer `layer` of the packet's rays that hit: shaded as write_pixels shades a hit, as
@@ -285,8 +291,8 @@ void write_layer(const Frame& f, RayPacket<S>& packet, int x0, int y0, int layer
       const std::size_t slot = p * static_cast<std::size_t>(slots.max_layers) + layer;
       slots.count[p] = static_cast<std::uint8_t>(layer + 1);
       fragment(r, light[r], slots.color[slot]);
-      for (std::size_t j = 0; j < slots.shadow_terms.size(); ++j)
-        fragment(r, factor[j][r], slots.shadow_terms[j][slot]);
+      for (int j = 0; j < slots.shadowing; ++j)
+        fragment(r, factor[j][r], slots.shadow_term(j)[slot]);
     }
   }
 }
@@ -489,9 +495,8 @@ void trace_frame(const Frame& f, Framebuffer& image, bool clipped, const TraceOp
   }
 }
 
-// The slots' layers, pixel by pixel, as a fragment image.
-void pack(const LayerSlots& slots, const std::vector<Fragment>& from, FragmentImage& to, int width,
-          int height) {
+// The slots' layers, pixel by pixel, as a fragment image (its storage reused).
+void pack(const LayerSlots& slots, const Fragment* from, FragmentImage& to, int width, int height) {
   to.width = width;
   to.height = height;
   const std::size_t pixels = to.pixel_count();
@@ -501,8 +506,7 @@ void pack(const LayerSlots& slots, const std::vector<Fragment>& from, FragmentIm
   to.fragments.resize(to.begin[pixels]);
   const auto layers = static_cast<std::size_t>(slots.max_layers);
   tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t p) {
-    std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(p * layers), slots.count[p],
-                to.fragments.begin() + to.begin[p]);
+    std::copy_n(from + p * layers, slots.count[p], to.fragments.begin() + to.begin[p]);
   });
 }
 
@@ -539,11 +543,13 @@ void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, co
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
   LayerSlots slots;
   slots.max_layers = std::clamp(options.max_layers, 1, kMaxLayers);
-  const std::size_t size = pixels * static_cast<std::size_t>(slots.max_layers);
-  slots.count.assign(pixels, 0);
-  slots.color.resize(size);
-  const int shadowing = options.lights.headlight_only() ? 0 : options.lights.shadow_count();
-  slots.shadow_terms.assign(static_cast<std::size_t>(shadowing), std::vector<Fragment>(size));
+  slots.shadowing = options.lights.headlight_only() ? 0 : options.lights.shadow_count();
+  slots.size = pixels * static_cast<std::size_t>(slots.max_layers);
+  image.slot_count.assign(pixels, 0);
+  // Grown when needed, never cleared: write_layer writes every slot it counts.
+  image.slots.resize(std::max(image.slots.size(), (1 + slots.shadowing) * slots.size));
+  slots.count = image.slot_count.data();
+  slots.color = image.slots.data();
   Framebuffer unused;  // the layers go to the slots
   with_frame(volume, bvh, camera, surfaces, options, [&](Frame& f, bool clipped) {
     for (int k = 0; k < f.isos.count; ++k)
@@ -552,9 +558,10 @@ void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, co
     trace_frame(f, unused, clipped, options, stats);
   });
   pack(slots, slots.color, image.color, camera.width, camera.height);
-  image.shadow_terms.resize(slots.shadow_terms.size());
-  for (std::size_t j = 0; j < slots.shadow_terms.size(); ++j)
-    pack(slots, slots.shadow_terms[j], image.shadow_terms[j], camera.width, camera.height);
+  image.shadow_terms.resize(static_cast<std::size_t>(slots.shadowing));
+  for (int j = 0; j < slots.shadowing; ++j)
+    pack(slots, slots.shadow_term(j), image.shadow_terms[static_cast<std::size_t>(j)], camera.width,
+         camera.height);
 }
 
 void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,

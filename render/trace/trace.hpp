@@ -115,6 +115,12 @@ struct LayerImage {
   // Per shadowing light of options.lights, in order, with the same fragments' depths, keys and
   // alphas: the part of each layer's color that light gives (premultiplied likewise).
   std::vector<FragmentImage> shadow_terms;
+  // Where the packets write the layers, max_layers slots per pixel (the color's, then each
+  // shadowing light's), before they are packed into the images above: kept from frame to frame
+  // like a trace_into image, since allocating and clearing them each frame cost more than
+  // tracing the layers. Only the slots of a pixel's counted layers are ever read.
+  std::vector<std::uint8_t> slot_count;
+  std::vector<Fragment> slots;
 };
 
 // Whether any surface is transparent (opacity below 1).

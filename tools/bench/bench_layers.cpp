@@ -5,10 +5,10 @@
 #include <functional>
 #include <vector>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/trace/layer_shading.hpp"
 #include "render/trace/shadow_rays.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "tools/bench_common/json_file.hpp"
 
 namespace tetray::bench {
@@ -47,7 +47,7 @@ void layered_frame(const render::TetVolume& volume, const render::Bvh& bvh,
         render::trace_shadow_rays(volume, bvh, camera, surfaces, options, depth);
     render::apply_layer_shadows(layers.color, layers.shadow_terms, layer, occluded);
   }
-  image = render::flatten_layers(layers.color, camera);
+  render::flatten_layers(layers.color, camera, image);
 }
 
 double per_ray(const render::LayerImage& layers) {

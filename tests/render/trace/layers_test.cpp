@@ -152,5 +152,45 @@ TEST(Layers, StopAtAnOpaqueLayerAndAtMaxLayersWithClipping) {
   expect_layers_agree(isovalues, opacity, 3, clip, "opaque and clipped");
 }
 
+// One LayerImage traced into frame after frame (its slots kept, as in situ) holds what a fresh
+// one holds, whatever the frames before it left there: more or fewer pixels, layers per pixel
+// and shadowing lights.
+TEST(Layers, AReusedImageHoldsWhatAFreshOneHolds) {
+  const GyroidTwist data = gyroid(8);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  const double isovalues[] = {-0.5, 0.0, 0.5};
+  std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
+  for (render::IsoSurface& s : surfaces) s.opacity = 0.5f;
+  struct FrameSetup {
+    int side, max_layers, shadowing;
+  };
+  const FrameSetup frames[] = {{kSide, render::kMaxLayers, 2},
+                               {kSide / 2, 2, 0},
+                               {kSide, 3, 1},
+                               {kSide / 3, 4, 2},
+                               {kSide, render::kMaxLayers, 0}};
+  render::LayerImage reused;
+  for (const FrameSetup& setup : frames) {
+    render::TraceOptions options;
+    options.max_layers = setup.max_layers;
+    options.lights.count = 1 + setup.shadowing;
+    options.lights.light[0] = {render::LightKind::headlight, {}, false};
+    options.lights.light[1] = {render::LightKind::point, {1.6, 2.4, 0.9}, true};
+    options.lights.light[2] = {render::LightKind::directional, {-0.3, -1.0, -0.6}, true};
+    const render::Camera camera = standard_cameras(setup.side, setup.side).front();
+    render::LayerImage fresh;
+    render::trace_layers(fresh, scene.volume, scene.bvh, camera, surfaces, options);
+    render::trace_layers(reused, scene.volume, scene.bvh, camera, surfaces, options);
+    const std::string name = std::to_string(setup.side) + " px, " +
+                             std::to_string(setup.max_layers) + " layers, " +
+                             std::to_string(setup.shadowing) + " shadowing lights";
+    EXPECT_GT(fresh.color.fragments.size(), fresh.color.pixel_count() / 4) << name;
+    EXPECT_TRUE(same_fragments(reused.color, fresh.color)) << name;
+    ASSERT_EQ(reused.shadow_terms.size(), static_cast<std::size_t>(setup.shadowing)) << name;
+    for (std::size_t j = 0; j < reused.shadow_terms.size(); ++j)
+      EXPECT_TRUE(same_fragments(reused.shadow_terms[j], fresh.shadow_terms[j])) << name;
+  }
+}
+
 }  // namespace
 }  // namespace tetray::test
