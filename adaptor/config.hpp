@@ -79,7 +79,7 @@ struct VolumeSpec {
   ColorRange range{};                         // automatic: the field's global range each step
   std::vector<render::OpacityPoint> opacity;  // ascending values
   double unit_distance = 1;
-  double termination = 0.99;  // opacity that ends a ray; 1: no early termination
+  double termination = 1;  // opacity that ends a ray; 1: no early termination (exact across ranks)
   // The field of the scene's isosurfaces met along the walk (Scene::surfaces, the `surfaces`
   // key); empty: the scene's field.
   std::string surface_field;

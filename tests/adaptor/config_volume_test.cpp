@@ -28,7 +28,7 @@ TEST(ConfigVolume, TransferFunctionAndDefaults) {
   r = parse("    volume: {opacity: [[0, 1]]}\n");
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_TRUE(r.config->scenes[0].volume->range.automatic);
-  EXPECT_EQ(r.config->scenes[0].volume->termination, 0.99);
+  EXPECT_EQ(r.config->scenes[0].volume->termination, 1.0);
 }
 
 TEST(ConfigVolume, SurfacesOfTheVolumesFieldOrAnother) {
