@@ -20,19 +20,8 @@
 namespace tetray::testing {
 namespace {
 
-struct CapScene {
-  GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
-  std::vector<double> temperature;  // linear in the position
-};
-
-const CapScene& scene() {
-  static const CapScene s = [] {
-    CapScene c;
-    const std::vector<double>& p = c.gyroid.mesh.points;
-    for (std::size_t k = 0; k < p.size(); k += 3)
-      c.temperature.push_back(0.6 * p[k] - 0.3 * p[k + 1] + 0.2 * p[k + 2]);
-    return c;
-  }();
+const GyroidWithTemperature& scene() {
+  static const GyroidWithTemperature s = gyroid_with_temperature({0, 0.6, -0.3, 0.2});
   return s;
 }
 

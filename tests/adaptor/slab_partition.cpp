@@ -6,6 +6,14 @@
 
 namespace tetray::testing {
 
+GyroidWithTemperature gyroid_with_temperature(const double (&c)[4]) {
+  GyroidWithTemperature scene;
+  const std::vector<double>& p = scene.gyroid.mesh.points;
+  for (std::size_t k = 0; k < p.size(); k += 3)
+    scene.temperature.push_back(c[0] + c[1] * p[k] + c[2] * p[k + 1] + c[3] * p[k + 2]);
+  return scene;
+}
+
 Slab x_slab(const BoxMesh& mesh, int rank, int ranks) {
   Slab s;
   for (std::size_t t = 0; t < mesh.tet_count(); ++t) {

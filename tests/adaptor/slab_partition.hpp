@@ -1,6 +1,7 @@
-// The split-mesh tests' partition, run and comparison: a rank's share of a mesh in [-1, 1]^3 as the
-// tets whose centroid's x falls in its slab (with their indices in the whole mesh as global
-// ids), and the count of pixels two images disagree on.
+// The split-mesh tests' scene, partition, run and comparison: the gyroid with a second, linear
+// field; a rank's share of a mesh in [-1, 1]^3 as the tets whose centroid's x falls in its slab
+// (with their indices in the whole mesh as global ids), and the count of pixels two images
+// disagree on.
 #pragma once
 
 #include <cstddef>
@@ -17,6 +18,14 @@
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
+
+// The gyroid-twist scene at n = 10, t = 0.2 with `temperature` = c[0] + c[1] x + c[2] y + c[3] z
+// at its points.
+struct GyroidWithTemperature {
+  GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
+  std::vector<double> temperature;
+};
+GyroidWithTemperature gyroid_with_temperature(const double (&c)[4]);
 
 struct Slab {
   std::vector<std::int64_t> tets;  // 4 per tet, the whole mesh's point numbers

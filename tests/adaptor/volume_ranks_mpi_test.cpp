@@ -26,19 +26,8 @@
 namespace tetray::testing {
 namespace {
 
-struct VolumeScene {
-  GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
-  std::vector<double> temperature;  // linear in the position
-};
-
-const VolumeScene& scene() {
-  static const VolumeScene s = [] {
-    VolumeScene v;
-    const std::vector<double>& p = v.gyroid.mesh.points;
-    for (std::size_t k = 0; k < p.size(); k += 3)
-      v.temperature.push_back(0.5 + 0.3 * p[k] - 0.15 * p[k + 1] + 0.1 * p[k + 2]);
-    return v;
-  }();
+const GyroidWithTemperature& scene() {
+  static const GyroidWithTemperature s = gyroid_with_temperature({0.5, 0.3, -0.15, 0.1});
   return s;
 }
 
