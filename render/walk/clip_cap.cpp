@@ -18,23 +18,51 @@ struct HalfSpace {
   double offset;
 };
 
-int half_spaces(const ClipRegion& region, Vec3d origin, HalfSpace* out) {
+// The region's sides, made once per frame (a cap asks for every pixel's entry).
+struct RegionSides {
+  HalfSpace side[6 + kMaxClipPlanes];
   int count = 0;
+};
+
+RegionSides region_sides(const ClipRegion& region, Vec3d origin) {
+  RegionSides sides;
   if (region.has_box) {
     const Vec3d lo = region.box_lo - origin, hi = region.box_hi - origin;
     for (int a = 0; a < 3; ++a) {
       Vec3d n{0, 0, 0};
       n[a] = 1;
-      out[count++] = {n, hi[a]};
+      sides.side[sides.count++] = {n, hi[a]};
       n[a] = -1;
-      out[count++] = {n, -lo[a]};
+      sides.side[sides.count++] = {n, -lo[a]};
     }
   }
   for (int k = 0; k < std::min(region.plane_count, kMaxClipPlanes); ++k) {
     const Vec3d n = normalize(region.planes[k].normal);
-    out[count++] = {n, dot(n, region.planes[k].point - origin)};
+    sides.side[sides.count++] = {n, dot(n, region.planes[k].point - origin)};
   }
-  return count;
+  return sides;
+}
+
+std::optional<RegionEntry> entry_through(const RegionSides& sides, Vec3d eye, Vec3d d) {
+  double t_in = 0, t_out = std::numeric_limits<double>::infinity();
+  int entered = -1;
+  for (int k = 0; k < sides.count; ++k) {
+    const double toward = dot(sides.side[k].normal, d);
+    const double room = sides.side[k].offset - dot(sides.side[k].normal, eye);  // < 0: outside
+    if (toward == 0) {
+      if (room < 0) return std::nullopt;  // parallel, outside: the ray never enters
+      continue;
+    }
+    const double t = room / toward;
+    if (toward > 0) {
+      t_out = std::min(t_out, t);
+    } else if (room < 0 && t > t_in) {
+      t_in = t;
+      entered = k;
+    }
+  }
+  if (entered < 0 || t_in > t_out) return std::nullopt;
+  return RegionEntry{t_in, sides.side[entered].normal};
 }
 
 // The cap hits of one image row, structure of arrays as shade.hpp's RayHits reads them.
@@ -70,6 +98,7 @@ struct CapFrame {
   const TraceOptions& options;
   const ClipCap& cap;
   Vec3d eye;  // local
+  RegionSides sides;
 };
 
 // Collects the row's rays whose entry point into the region lies in one of this rank's tets.
@@ -79,8 +108,7 @@ void find_cap_hits(const CapFrame& f, int j, CapRow& row) {
   std::optional<std::uint32_t> last;
   for (int i = 0; i < f.camera.width; ++i) {
     const Vec3d d = pixel_direction(f.view, f.camera, i, j);
-    const std::optional<RegionEntry> entry =
-        enter_region(f.options.clip, f.volume.origin, f.eye, d);
+    const std::optional<RegionEntry> entry = entry_through(f.sides, f.eye, d);
     if (!entry) continue;
     const Vec3d point = f.eye + entry->t * d;
     std::optional<PointLocation> at;
@@ -146,27 +174,7 @@ void draw_row(const CapFrame& f, const ShadeContext& shade, const LocalLights* l
 
 std::optional<RegionEntry> enter_region(const ClipRegion& region, Vec3d origin, Vec3d eye,
                                         Vec3d d) {
-  HalfSpace sides[6 + kMaxClipPlanes];
-  const int count = half_spaces(region, origin, sides);
-  double t_in = 0, t_out = std::numeric_limits<double>::infinity();
-  int entered = -1;
-  for (int k = 0; k < count; ++k) {
-    const double toward = dot(sides[k].normal, d);
-    const double room = sides[k].offset - dot(sides[k].normal, eye);  // < 0: eye outside
-    if (toward == 0) {
-      if (room < 0) return std::nullopt;  // parallel, outside: the ray never enters
-      continue;
-    }
-    const double t = room / toward;
-    if (toward > 0) {
-      t_out = std::min(t_out, t);
-    } else if (room < 0 && t > t_in) {
-      t_in = t;
-      entered = k;
-    }
-  }
-  if (entered < 0 || t_in > t_out) return std::nullopt;
-  return RegionEntry{t_in, sides[entered].normal};
+  return entry_through(region_sides(region, origin), eye, d);
 }
 
 void draw_clip_cap(Framebuffer& image, const TetVolume& volume, const Bvh& bvh,
@@ -174,7 +182,14 @@ void draw_clip_cap(Framebuffer& image, const TetVolume& volume, const Bvh& bvh,
                    std::vector<Framebuffer>* shadow_terms) {
   if (cap.colormap == nullptr || options.clip.empty() || bvh.empty()) return;
   const CameraFrame view = make_frame(camera);
-  const CapFrame f{volume, bvh, camera, view, options, cap, view.eye - volume.origin};
+  const CapFrame f{volume,
+                   bvh,
+                   camera,
+                   view,
+                   options,
+                   cap,
+                   view.eye - volume.origin,
+                   region_sides(options.clip, volume.origin)};
   const ShadeContext shade{volume, view, {}, nullptr, options};
   const LocalLights lights = local_lights(options.lights, volume.origin);
   const LocalLights* lit = options.lights.headlight_only() ? nullptr : &lights;

@@ -10,6 +10,7 @@ namespace {
 
 // Relative slack of the inside test: a point on a shared face belongs to both tets.
 constexpr double kFaceSlack = 1e-10;
+constexpr int kLocateStack = 130;  // pending nodes: one per level, plus the pair just pushed
 
 bool box_contains(const Bounds4& b, Vec3d p) {
   for (int a = 0; a < 3; ++a) {
@@ -60,14 +61,18 @@ std::optional<PointLocation> locate_strictly_inside(const TetVolume& volume, std
 std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local) {
   if (bvh.empty()) return std::nullopt;
   std::optional<PointLocation> best;
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& node = bvh.nodes[stack.back()];
-    stack.pop_back();
+  // On the stack, not the heap: a cap locates a point for most of its pixels. The builders
+  // bound the depth well below the traversal's 128 (packet_traversal.hpp), and a walk down
+  // holds at most one pending node per level.
+  std::uint32_t stack[kLocateStack];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BvhNode& node = bvh.nodes[stack[--top]];
     if (!box_contains(node.bounds, local)) continue;
     if (!node.is_leaf()) {
-      stack.push_back(node.first);
-      stack.push_back(node.first + 1);
+      stack[top++] = node.first;
+      stack[top++] = node.first + 1;
       continue;
     }
     for (std::uint32_t t = node.first; t < node.first + node.count; ++t) {
