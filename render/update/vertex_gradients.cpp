@@ -59,14 +59,18 @@ struct Grid {
   double offset;
 };
 
+// x 2^k, by building 2^k from its bits where it is a normal double (std::ldexp is a call).
+double scaled(double x, int k) {
+  if (k < -1022 || k > 1023) return std::ldexp(x, k);
+  return x * std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52);
+}
+
 Grid grid_of(const VertexExponents& e, std::int32_t tet_count) {
   Grid grid;
-  for (int c = 0; c < 4; ++c) {
-    grid.scale[c] = std::ldexp(1.0, -std::max<int>(e[c], kLeastExponent));
-  }
+  for (int c = 0; c < 4; ++c) grid.scale[c] = scaled(1.0, -std::max<int>(e[c], kLeastExponent));
   const int b = std::max(
       3, static_cast<int>(std::bit_width(static_cast<std::uint32_t>(std::max(tet_count, 1) - 1))));
-  grid.offset = std::ldexp(1.5, b - 1);
+  grid.offset = scaled(1.5, b - 1);
   return grid;
 }
 
@@ -162,7 +166,7 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
       const auto unscaled = [&](int c) {
         const int shift = std::max<int>(exponents[k][c], kLeastExponent) -
                           std::max<int>(exponents[k][3], kLeastExponent);
-        return std::ldexp(s[c] / s[3], shift);
+        return scaled(s[c] / s[3], shift);
       };
       volume.gradients[k] = static_cast<Vec3f>(Vec3d{unscaled(0), unscaled(1), unscaled(2)});
     }
