@@ -62,8 +62,9 @@ inline std::span<std::int32_t> row_of(std::int32_t& value) { return {&value, 1};
 template <typename V, typename Combine>
 int combine_shared(const render::TetVolume& volume, std::span<const std::uint32_t> points,
                    std::vector<V>& per_vertex, Combine&& combine) {
-  using T = typename decltype(row_of(per_vertex.front()))::element_type;
-  const std::size_t width = row_of(per_vertex.front()).size();
+  V probe{};  // per_vertex may be empty
+  using T = typename decltype(row_of(probe))::element_type;
+  const std::size_t width = row_of(probe).size();
   std::vector<T> values;
   values.reserve(width * points.size());
   for (std::uint32_t p : points) {
