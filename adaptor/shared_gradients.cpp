@@ -50,20 +50,31 @@ std::uint32_t vertex_of(const render::TetVolume& volume, std::uint32_t point) {
   return volume.point_vertex.empty() ? point : volume.point_vertex[point];
 }
 
+// A vertex's values as a row of `combine_shared`'s exchange.
+template <typename T, std::size_t W>
+std::span<T> row_of(std::array<T, W>& values) {
+  return values;
+}
+inline std::span<std::int32_t> row_of(std::int32_t& value) { return {&value, 1}; }
+
 // Replaces the per-vertex values of the shared points by what `combine` makes of them over the
 // ranks.
-template <typename T, typename Combine>
+template <typename V, typename Combine>
 int combine_shared(const render::TetVolume& volume, std::span<const std::uint32_t> points,
-                   std::vector<std::array<T, 4>>& per_vertex, Combine&& combine) {
+                   std::vector<V>& per_vertex, Combine&& combine) {
+  V probe{};  // per_vertex may be empty
+  using T = typename decltype(row_of(probe))::element_type;
+  const std::size_t width = row_of(probe).size();
   std::vector<T> values;
-  values.reserve(4 * points.size());
+  values.reserve(width * points.size());
   for (std::uint32_t p : points) {
-    const std::array<T, 4>& v = per_vertex[vertex_of(volume, p)];
-    values.insert(values.end(), v.begin(), v.end());
+    const std::span<T> row = row_of(per_vertex[vertex_of(volume, p)]);
+    values.insert(values.end(), row.begin(), row.end());
   }
-  if (int rc = combine(std::span<T>(values)); rc != MPI_SUCCESS) return rc;
+  if (int rc = combine(std::span<T>(values), width); rc != MPI_SUCCESS) return rc;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    std::copy_n(&values[4 * i], 4, per_vertex[vertex_of(volume, points[i])].begin());
+    std::copy_n(&values[width * i], width,
+                row_of(per_vertex[vertex_of(volume, points[i])]).begin());
   }
   return MPI_SUCCESS;
 }
@@ -94,14 +105,17 @@ std::string SharedGradients::match(const render::TetVolume& volume, const Points
 
 std::string SharedGradients::compute(render::TetVolume& volume) const {
   std::vector<render::VertexExponents> exponents;
+  std::vector<std::int32_t> tet_counts;
   std::vector<render::VertexSums> sums;
-  render::gradient_exponents(volume, exponents);
-  int rc = combine_shared(volume, points_, exponents,
-                          [&](std::span<std::int16_t> values) { return shared_.max(values, 4); });
+  render::gradient_exponents(volume, exponents, tet_counts);
+  const auto max = [&](auto values, std::size_t width) { return shared_.max(values, width); };
+  const auto sum = [&](auto values, std::size_t width) { return shared_.sum(values, width); };
+  int rc = combine_shared(volume, points_, exponents, max);
   if (rc != MPI_SUCCESS) return failed("exponents", rc);
-  render::gradient_sums(volume, exponents, sums);
-  rc = combine_shared(volume, points_, sums,
-                      [&](std::span<render::Int128> values) { return shared_.sum(values, 4); });
+  rc = combine_shared(volume, points_, tet_counts, sum);
+  if (rc != MPI_SUCCESS) return failed("tet counts", rc);
+  render::gradient_sums(volume, exponents, tet_counts, sums);
+  rc = combine_shared(volume, points_, sums, sum);
   if (rc != MPI_SUCCESS) return failed("sums", rc);
   render::gradients_from_sums(volume, exponents, sums);
   return {};

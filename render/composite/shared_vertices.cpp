@@ -149,8 +149,13 @@ int SharedVertices::max(std::span<std::int16_t> values, std::size_t width) const
                  [](std::int16_t a, std::int16_t b) { return std::max(a, b); });
 }
 
-int SharedVertices::sum(std::span<Int128> values, std::size_t width) const {
-  return combine(values, width, Int128{0}, [](Int128 a, Int128 b) { return a + b; });
+int SharedVertices::sum(std::span<std::int32_t> values, std::size_t width) const {
+  return combine(values, width, 0, [](std::int32_t a, std::int32_t b) { return a + b; });
+}
+
+// The values are exact sums (render/update/vertex_gradients.hpp): adding them never rounds.
+int SharedVertices::sum(std::span<double> values, std::size_t width) const {
+  return combine(values, width, 0.0, [](double a, double b) { return a + b; });
 }
 
 }  // namespace tetray::render

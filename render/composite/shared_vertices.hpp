@@ -13,8 +13,6 @@
 #include <span>
 #include <vector>
 
-#include "render/core/int128.hpp"
-
 namespace tetray::render {
 
 // A point's exact position (the caller's reference coordinates, -0 stored as +0).
@@ -35,7 +33,8 @@ class SharedVertices {
   // Collective. values[i * width, (i + 1) * width) belong to shared()[i]; each becomes the
   // maximum (the sum) over the ranks that hold the vertex. Return MPI_SUCCESS or the MPI error.
   int max(std::span<std::int16_t> values, std::size_t width) const;
-  int sum(std::span<Int128> values, std::size_t width) const;
+  int sum(std::span<std::int32_t> values, std::size_t width) const;
+  int sum(std::span<double> values, std::size_t width) const;
 
  private:
   template <typename T, typename Combine>

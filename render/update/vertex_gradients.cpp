@@ -37,39 +37,41 @@ using TetTerms = std::array<double, 4>;
   return finite ? terms : TetTerms{0, 0, 0, 0};
 }
 
-// A finite double as sign, 53-bit integer mantissa and exponent: |x| = mantissa 2^exponent.
-struct Parts {
-  bool negative;
-  std::uint64_t mantissa;
-  int exponent;
-};
-
-Parts parts_of(double x) {
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
-  const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
-  // Subnormals have no implicit leading one and the exponent of the smallest normals.
-  if (biased == 0) return {x < 0, fraction, -1074};
-  return {x < 0, fraction | (std::uint64_t{1} << 52), biased - 1075};
-}
-
 // The e with 2^(e-1) <= |term| < 2^e (std::frexp's), by bits; kNoTerm for zero.
 std::int16_t exponent_of(double term) {
   if (term == 0) return kNoTerm;
-  const Parts p = parts_of(term);
-  return static_cast<std::int16_t>(p.exponent + std::bit_width(p.mantissa));
+  const auto bits = std::bit_cast<std::uint64_t>(term);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  // A subnormal has no implicit leading one: its fraction's width counts from 2^-1074.
+  const int fraction_width =
+      static_cast<int>(std::bit_width(bits & ((std::uint64_t{1} << 52) - 1)));
+  return static_cast<std::int16_t>(biased != 0 ? biased - 1022 : fraction_width - 1074);
 }
 
-// The term in units of 2^(e - kTermBits), truncated toward zero: its mantissa shifted, so
-// exact integer arithmetic throughout. |term| < 2^e keeps the result below 2^kTermBits; a zero
-// term (mantissa 0) gives 0 whatever the shift, even for a vertex whose e is kNoTerm.
-Int128 quantized(const Parts& p, std::int16_t e) {
-  const int shift = p.exponent + kTermBits - e;
-  const Int128 q = shift >= 0 ? static_cast<Int128>(p.mantissa) << std::min(shift, 127)
-                              : static_cast<Int128>(p.mantissa >> std::min(-shift, 63));
-  // The sign without a branch: terms of both signs interleave unpredictably.
-  const Int128 negative = -static_cast<Int128>(p.negative);
-  return (q ^ negative) - negative;
+// A vertex's grid (render/update/vertex_gradients.hpp, VertexSums): a term t becomes
+// (t scale + offset) - offset. |t scale| < 1 and offset = 1.5 2^(b-1) (b >= 3) keep the first
+// sum in [2^(b-1), 2^b), where doubles are the multiples of 2^(b-53): it rounds t scale to
+// nearest on that grid, and the subtraction is exact. scale is a power of two, so t scale is
+// exact unless it underflows, and then below half a unit either way: whether the compiler fuses
+// the multiply and add changes nothing.
+struct Grid {
+  std::array<double, 4> scale;
+  double offset;
+};
+
+// x 2^k, by building 2^k from its bits where it is a normal double (std::ldexp is a call).
+double scaled(double x, int k) {
+  if (k < -1022 || k > 1023) return std::ldexp(x, k);
+  return x * std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52);
+}
+
+Grid grid_of(const VertexExponents& e, std::int32_t tet_count) {
+  Grid grid;
+  for (int c = 0; c < 4; ++c) grid.scale[c] = scaled(1.0, -std::max<int>(e[c], kLeastExponent));
+  const int b = std::max(
+      3, static_cast<int>(std::bit_width(static_cast<std::uint32_t>(std::max(tet_count, 1) - 1))));
+  grid.offset = scaled(1.5, b - 1);
+  return grid;
 }
 
 // Calls add(k, prepare(terms)) for each tet's vertices k: what depends on the tet alone is
@@ -114,8 +116,10 @@ void for_each_tet_vertex(const TetVolume& volume, Prepare&& prepare, Add&& add) 
 
 }  // namespace
 
-void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents) {
+void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents,
+                        std::vector<std::int32_t>& tet_counts) {
   exponents.assign(volume.vertices.size(), {kNoTerm, kNoTerm, kNoTerm, kNoTerm});
+  tet_counts.assign(volume.vertices.size(), 0);
   for_each_tet_vertex(
       volume,
       [](const TetTerms& terms) {
@@ -125,21 +129,26 @@ void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& e
       },
       [&](std::int32_t k, const VertexExponents& e) {
         for (int c = 0; c < 4; ++c) exponents[k][c] = std::max(exponents[k][c], e[c]);
+        ++tet_counts[k];
       });
 }
 
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::vector<VertexSums>& sums) {
+                   std::span<const std::int32_t> tet_counts, std::vector<VertexSums>& sums) {
+  std::vector<Grid> grids(volume.vertices.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grids.size()), [&](const auto& block) {
+    for (std::size_t k = block.begin(); k != block.end(); ++k) {
+      grids[k] = grid_of(exponents[k], tet_counts[k]);
+    }
+  });
   sums.assign(volume.vertices.size(), {0, 0, 0, 0});
   for_each_tet_vertex(
-      volume,
-      [](const TetTerms& terms) {
-        std::array<Parts, 4> p;
-        for (int c = 0; c < 4; ++c) p[c] = parts_of(terms[c]);
-        return p;
-      },
-      [&](std::int32_t k, const std::array<Parts, 4>& p) {
-        for (int c = 0; c < 4; ++c) sums[k][c] += quantized(p[c], exponents[k][c]);
+      volume, [](const TetTerms& terms) { return terms; },
+      [&](std::int32_t k, const TetTerms& terms) {
+        const Grid& grid = grids[k];
+        for (int c = 0; c < 4; ++c) {
+          sums[k][c] += (terms[c] * grid.scale[c] + grid.offset) - grid.offset;
+        }
       });
 }
 
@@ -148,23 +157,28 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
   volume.gradients.resize(volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sums.size()), [&](const auto& block) {
     for (std::size_t k = block.begin(); k != block.end(); ++k) {
-      double value[4];
-      for (int c = 0; c < 4; ++c) {
-        const std::int16_t e = exponents[k][c];
-        value[c] = e == kNoTerm ? 0.0 : std::ldexp(static_cast<double>(sums[k][c]), e - kTermBits);
+      const VertexSums& s = sums[k];
+      if (!(s[3] > 0)) {
+        volume.gradients[k] = {0, 0, 0};
+        continue;
       }
-      const Vec3d sum{value[0], value[1], value[2]};
-      volume.gradients[k] =
-          value[3] > 0 ? static_cast<Vec3f>((1 / value[3]) * sum) : Vec3f{0, 0, 0};
+      // The sums are scaled by 2^-e: the quotient of two is scaled by the exponents' difference.
+      const auto unscaled = [&](int c) {
+        const int shift = std::max<int>(exponents[k][c], kLeastExponent) -
+                          std::max<int>(exponents[k][3], kLeastExponent);
+        return scaled(s[c] / s[3], shift);
+      };
+      volume.gradients[k] = static_cast<Vec3f>(Vec3d{unscaled(0), unscaled(1), unscaled(2)});
     }
   });
 }
 
 void compute_vertex_gradients(TetVolume& volume) {
   std::vector<VertexExponents> exponents;
+  std::vector<std::int32_t> tet_counts;
   std::vector<VertexSums> sums;
-  gradient_exponents(volume, exponents);
-  gradient_sums(volume, exponents, sums);
+  gradient_exponents(volume, exponents, tet_counts);
+  gradient_sums(volume, exponents, tet_counts, sums);
   gradients_from_sums(volume, exponents, sums);
 }
 

@@ -5,10 +5,12 @@
 //
 // The sums are exact, so a vertex's gradient does not depend on the order of its tets nor on how
 // they are split among ranks (docs/architecture.md, "Smooth shading across ranks"): each tet's
-// terms (gradient x |det| per component, and |det|) are quantized on a grid set by the largest
+// terms (gradient x |det| per component, and |det|) are rounded to a grid set by the largest
 // term of the vertex in that component (a maximum, which any order and any partition find
-// alike) and summed as 128-bit integers. A rank that shares vertices with others combines their
-// exponents (a maximum) and then their sums (an integer addition) between the passes.
+// alike) and by its tet count (a sum, likewise), coarse enough that every partial sum is a
+// multiple of the grid below 2^53 of its units: double additions of them never round. A rank
+// that shares vertices with others combines their exponents (a maximum) and tet counts (a sum)
+// and then their sums (exact additions) between the passes.
 #pragma once
 
 #include <array>
@@ -17,7 +19,6 @@
 #include <span>
 #include <vector>
 
-#include "render/core/int128.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
@@ -27,18 +28,22 @@ namespace tetray::render {
 using VertexExponents = std::array<std::int16_t, 4>;
 inline constexpr std::int16_t kNoTerm = std::numeric_limits<std::int16_t>::min();
 
-// Per vertex and term, the sum of its tets' terms in units of 2^(e - kTermBits): each term is
-// below 2^kTermBits in these units, so fewer than 2^31 tets per vertex cannot overflow.
-using VertexSums = std::array<Int128, 4>;
-inline constexpr int kTermBits = 96;
+// Per vertex and term, the sum of its tets' terms scaled by 2^-e (e at least kLeastExponent,
+// so that 2^-e is a double), each rounded to a multiple of 2^(b - 53), b = max(3, ceil(log2
+// n)) for the vertex's n tets: |term| < 1 rounds to at most 2^(53 - b) units, so n of them sum
+// to at most 2^53 units, which doubles hold exactly. A term's rounding error is at most
+// 2^(b - 54) of 2^e: below 2^-48 for n <= 32, 2^-42 for n < 4096 (float precision is 2^-24).
+using VertexSums = std::array<double, 4>;
+inline constexpr int kLeastExponent = -1021;
 
-// Pass 1: `exponents` gets one entry per vertex, from this rank's tets.
-void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents);
+// Pass 1: `exponents` and `tet_counts` get one entry per vertex, from this rank's tets.
+void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents,
+                        std::vector<std::int32_t>& tet_counts);
 
-// Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids `exponents` set
-// (truncated toward zero: the grid is 2^-96 of the largest term, far below float precision).
+// Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids that
+// `exponents` and `tet_counts` (over all ranks) set.
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::vector<VertexSums>& sums);
+                   std::span<const std::int32_t> tet_counts, std::vector<VertexSums>& sums);
 
 // Fills volume.gradients from the sums: the gradient sum over the |det| sum (zero for a vertex
 // of flat tets only).

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
+#include <utility>
 
 #include "render/update/vertex_gradients.hpp"
 #include "support/reference_camera.hpp"
@@ -56,24 +58,37 @@ bool same_bits(const std::vector<render::Vec3f>& a, const std::vector<render::Ve
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
 }
 
-// The vertex gradients of `volume` with its tets split in two parts, as two ranks holding the
-// same vertices would find them: pass 1 on each, the maximum of their exponents, pass 2 on
-// each with those exponents, the sums added.
-std::vector<render::Vec3f> gradients_of_two_parts(render::TetVolume volume, std::size_t split) {
+// The exponents and sums of `volume` with its tets split in two parts, as two ranks holding the
+// same vertices would find them: pass 1 on each, the maximum of their exponents and the sum of
+// their tet counts, pass 2 on each with those, the sums added.
+struct Sums {
+  std::vector<render::VertexExponents> exponents;
+  std::vector<render::VertexSums> sums;
+};
+
+Sums sums_of_two_parts(const render::TetVolume& volume, std::size_t split) {
   render::TetVolume first = volume, second = volume;
   first.tets.resize(split);
   second.tets.erase(second.tets.begin(), second.tets.begin() + static_cast<std::ptrdiff_t>(split));
   std::vector<render::VertexExponents> e1, e2;
-  render::gradient_exponents(first, e1);
-  render::gradient_exponents(second, e2);
-  for (std::size_t k = 0; k < e1.size(); ++k)
+  std::vector<std::int32_t> n1, n2;
+  render::gradient_exponents(first, e1, n1);
+  render::gradient_exponents(second, e2, n2);
+  for (std::size_t k = 0; k < e1.size(); ++k) {
     for (int c = 0; c < 4; ++c) e1[k][c] = std::max(e1[k][c], e2[k][c]);
+    n1[k] += n2[k];
+  }
   std::vector<render::VertexSums> s1, s2;
-  render::gradient_sums(first, e1, s1);
-  render::gradient_sums(second, e1, s2);
+  render::gradient_sums(first, e1, n1, s1);
+  render::gradient_sums(second, e1, n1, s2);
   for (std::size_t k = 0; k < s1.size(); ++k)
     for (int c = 0; c < 4; ++c) s1[k][c] += s2[k][c];
-  render::gradients_from_sums(volume, e1, s1);
+  return {e1, s1};
+}
+
+std::vector<render::Vec3f> gradients_of_two_parts(render::TetVolume volume, std::size_t split) {
+  const Sums parts = sums_of_two_parts(volume, split);
+  render::gradients_from_sums(volume, parts.exponents, parts.sums);
   return volume.gradients;
 }
 
@@ -96,21 +111,56 @@ TEST(VertexGradients, IndependentOfTetOrderAndSplitBitForBit) {
   EXPECT_TRUE(same_bits(scene.volume.gradients, whole));
 }
 
-// Vertex 0's tets have x terms F, -F and 1 (F = 1e20): a double sum gives 1 or 0 depending on
-// their order, the exact sum 1 in every order, so the gradient is (1/3, 0, 0).
-TEST(VertexGradients, ExactSumsDoNotCancelAwayASmallTerm) {
-  constexpr float kF = 1e20f;
-  render::TetVolume volume;
-  volume.vertices = {{0, 0, 0, 0},   {1, 0, 0, kF}, {0, 1, 0, 0},  {0, 0, 1, 0},
-                     {-1, 0, 0, kF}, {1, 0, 0, 1},  {0, -1, 0, 0}, {0, 0, -1, 0}};
-  const render::Tet up{{0, 1, 2, 3}}, down{{0, 4, 2, 3}}, small{{0, 5, 6, 7}};
-  for (const std::vector<render::Tet>& order :
-       {std::vector{up, down, small}, std::vector{small, up, down}, std::vector{up, small, down}}) {
-    volume.tets = order;
-    render::compute_vertex_gradients(volume);
-    EXPECT_EQ(volume.gradients[0].x, 1.0f / 3);
-    EXPECT_EQ(volume.gradients[0].y, 0.0f);
+// Vertex 0's tets have x terms F, -F and 1: a double sum gives 1 or 0 depending on their order.
+// The sums keep a term down to 2^-50 of the largest (3 tets: b = 3, see VertexSums) in every
+// order: 1 for F = 2^40, so the gradient is (1/3, 0, 0); nothing for F = 1e20, so 0.
+TEST(VertexGradients, ExactSumsKeepASmallTermOnTheGridInEveryOrder) {
+  for (const auto& [f, x] : {std::pair{0x1p40f, 1.0f / 3}, std::pair{1e20f, 0.0f}}) {
+    render::TetVolume volume;
+    volume.vertices = {{0, 0, 0, 0},  {1, 0, 0, f}, {0, 1, 0, 0},  {0, 0, 1, 0},
+                       {-1, 0, 0, f}, {1, 0, 0, 1}, {0, -1, 0, 0}, {0, 0, -1, 0}};
+    const render::Tet up{{0, 1, 2, 3}}, down{{0, 4, 2, 3}}, small{{0, 5, 6, 7}};
+    for (const std::vector<render::Tet>& order :
+         {std::vector{up, down, small}, std::vector{small, up, down},
+          std::vector{up, small, down}}) {
+      volume.tets = order;
+      render::compute_vertex_gradients(volume);
+      EXPECT_EQ(volume.gradients[0].x, x) << f;
+      EXPECT_EQ(volume.gradients[0].y, 0.0f) << f;
+    }
   }
+}
+
+// 5000 tets around one axis: its two end vertices have a tet count far above a mesh's, so their
+// grid is coarser (b = 13), and their |det| terms, all positive and alike, sum to near 2^53 of
+// its units. The field and the radii are random, so the terms use all their bits: a sum that
+// rounded would differ in some order or split. The sums are compared, not the float gradients,
+// whose rounding would hide a difference in the last bits of a double.
+TEST(VertexGradients, SumsIndependentOfTetOrderAndSplitAtAHighTetCount) {
+  constexpr int kTets = 5000;
+  std::uint32_t state = 12345;
+  const auto random = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / float(1 << 24);
+  };
+  render::TetVolume volume;
+  volume.vertices = {{0, 0, -1, random()}, {0, 0, 1, random()}};
+  for (int i = 0; i < kTets; ++i) {
+    const double angle = 2 * std::numbers::pi * i / kTets, radius = 1 + 0.1 * random();
+    volume.vertices.push_back({static_cast<float>(radius * std::cos(angle)),
+                               static_cast<float>(radius * std::sin(angle)), random() - 0.5f,
+                               random()});
+  }
+  for (std::int32_t i = 0; i < kTets; ++i) {
+    volume.tets.push_back({{0, 1, 2 + i, 2 + (i + 1) % kTets}});
+  }
+  const std::vector<render::VertexSums> whole = sums_of_two_parts(volume, 0).sums;
+  for (const std::size_t split : {std::size_t{1}, std::size_t{1777}, std::size_t{2500}}) {
+    EXPECT_EQ(sums_of_two_parts(volume, split).sums, whole) << split;
+  }
+  std::reverse(volume.tets.begin(), volume.tets.end());
+  std::rotate(volume.tets.begin(), volume.tets.begin() + 1234, volume.tets.end());
+  EXPECT_EQ(sums_of_two_parts(volume, 2000).sums, whole);
 }
 
 // Every vertex's gradient against the linear field's, relative to its length.
