@@ -14,7 +14,7 @@ packages=(
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
   libfreetype-dev fonts-dejavu-core chromium
-  python3-matplotlib xvfb xauth libgl1-mesa-dri
+  python3-matplotlib python3-pil xvfb xauth libgl1-mesa-dri
 )
 
 missing=()
