@@ -43,13 +43,7 @@ std::string config(const std::string& directory, bool cap) {
 
 // The tets whose centroid's x falls in this rank's slab, with their global ids.
 void render(MPI_Comm comm, const std::string& directory, bool cap, const Slab& part) {
-  TetsView tets = TetsView::of(std::span<const std::int64_t>(part.tets));
-  tets.global_ids = part.ids.data();
-  const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)), tets};
-  const FieldView fields[] = {
-      FieldView::of("f", std::span<const double>(scene().gyroid.field)),
-      FieldView::of("temperature", std::span<const double>(scene().temperature))};
-  render_step_zero(comm, config(directory, cap), mesh, fields);
+  render_gyroid_with_temperature(comm, config(directory, cap), scene(), part);
 }
 
 TEST(CapAcrossRanks, GivesTheImageOfOneRank) {

@@ -14,6 +14,17 @@ GyroidWithTemperature gyroid_with_temperature(const double (&c)[4]) {
   return scene;
 }
 
+void render_gyroid_with_temperature(MPI_Comm comm, const std::string& yaml,
+                                    const GyroidWithTemperature& scene, const Slab& part) {
+  TetsView tets = TetsView::of(std::span<const std::int64_t>(part.tets));
+  tets.global_ids = part.ids.data();
+  const MeshView mesh{PointsView::of(std::span<const double>(scene.gyroid.mesh.points)), tets};
+  const FieldView fields[] = {
+      FieldView::of("f", std::span<const double>(scene.gyroid.field)),
+      FieldView::of("temperature", std::span<const double>(scene.temperature))};
+  render_step_zero(comm, yaml, mesh, fields);
+}
+
 Slab x_slab(const BoxMesh& mesh, int rank, int ranks) {
   Slab s;
   for (std::size_t t = 0; t < mesh.tet_count(); ++t) {

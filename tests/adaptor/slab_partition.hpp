@@ -21,11 +21,18 @@ namespace tetray::testing {
 
 // The gyroid-twist scene at n = 10, t = 0.2 with `temperature` = c[0] + c[1] x + c[2] y + c[3] z
 // at its points.
+struct Slab;
+
 struct GyroidWithTemperature {
   GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
   std::vector<double> temperature;
 };
 GyroidWithTemperature gyroid_with_temperature(const double (&c)[4]);
+
+// render_step_zero of `yaml` on `part` of `scene`'s mesh (its slab's tets with their global
+// ids), with the point fields `f` (the gyroid's) and `temperature`.
+void render_gyroid_with_temperature(MPI_Comm comm, const std::string& yaml,
+                                    const GyroidWithTemperature& scene, const Slab& part);
 
 struct Slab {
   std::vector<std::int64_t> tets;  // 4 per tet, the whole mesh's point numbers

@@ -55,13 +55,7 @@ std::string config(const std::string& directory) {
 }
 
 void render(MPI_Comm comm, const std::string& directory, const Slab& part) {
-  TetsView tets = TetsView::of(std::span<const std::int64_t>(part.tets));
-  tets.global_ids = part.ids.data();
-  const MeshView mesh{PointsView::of(std::span<const double>(scene().gyroid.mesh.points)), tets};
-  const FieldView fields[] = {
-      FieldView::of("f", std::span<const double>(scene().gyroid.field)),
-      FieldView::of("temperature", std::span<const double>(scene().temperature))};
-  render_step_zero(comm, config(directory), mesh, fields);
+  render_gyroid_with_temperature(comm, config(directory), scene(), part);
 }
 
 std::string bytes(const std::string& path) {
