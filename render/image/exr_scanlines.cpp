@@ -23,6 +23,8 @@
 #include <span>
 #include <string_view>
 
+#include "render/image/deflate_compressor.hpp"
+
 namespace tetray::render {
 namespace {
 
@@ -189,15 +191,11 @@ std::size_t rle(std::span<const std::uint8_t> in, std::uint8_t* out) {
 
 // --------------------------------------------------------------------------------- line blocks
 
-struct CompressorDeleter {
-  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
-};
-
 // One thread's buffers, reused from group to group.
 struct Scratch {
   std::vector<std::uint16_t> halves;
   std::vector<std::uint8_t> split, predicted, packed;
-  std::unique_ptr<libdeflate_compressor, CompressorDeleter> compressor;
+  DeflateCompressor compressor;  // made at the first ZIP block
 };
 
 void put_u32(std::vector<unsigned char>& out, std::uint32_t v) {
@@ -226,8 +224,7 @@ std::span<const std::uint8_t> compressed(std::span<const std::uint8_t> in,
   } else {
     // zlib, as OpenEXR's ZIP and ZIPS (at the fastest level, exr_encode.cpp); 0 when it does
     // not fit in fewer bytes than the block.
-    if (!s.compressor) s.compressor.reset(libdeflate_alloc_compressor(1));
-    if (!s.compressor) throw std::bad_alloc();
+    if (!s.compressor) s.compressor = make_deflate_compressor(1);
     size = libdeflate_zlib_compress(s.compressor.get(), s.predicted.data(), in.size(),
                                     s.packed.data(), in.size() - 1);
   }

@@ -16,6 +16,7 @@
 #include <new>
 #include <span>
 
+#include "render/image/deflate_compressor.hpp"
 #include "render/image/image_check.hpp"
 #include "render/image/image_write.hpp"
 #include "render/image/srgb8.hpp"
@@ -66,10 +67,6 @@ FilteredRows filtered_rows(const Framebuffer& image, bool filter_up) {
   return rows;
 }
 
-struct CompressorDeleter {
-  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
-};
-
 void put_u32(std::vector<unsigned char>& out, std::uint32_t v) {
   for (int shift = 24; shift >= 0; shift -= 8)
     out.push_back(static_cast<unsigned char>(v >> shift));
@@ -110,9 +107,7 @@ void put_color_space(std::vector<unsigned char>& out) {
 
 void encode_into(const Framebuffer& image, int compression_level, EncodedImage& encoded) {
   const FilteredRows rows = filtered_rows(image, compression_level > 0);
-  const std::unique_ptr<libdeflate_compressor, CompressorDeleter> compressor(
-      libdeflate_alloc_compressor(compression_level));
-  if (!compressor) throw std::bad_alloc();
+  const DeflateCompressor compressor = make_deflate_compressor(compression_level);
   // Not zeroed: the bound is about the rows' size, the stream mostly a tenth of it.
   const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), rows.size);
   const auto buffer = std::make_unique_for_overwrite<unsigned char[]>(bound);
