@@ -24,22 +24,12 @@ double field_value(const FieldView& field, std::size_t point) {
                                            : static_cast<const double*>(field.values)[point];
 }
 
-// The caller's point of every vertex of the volume's store.
-std::vector<std::size_t> vertex_points(const render::TetVolume& volume) {
-  std::vector<std::size_t> point(volume.vertices.size());
-  for (std::size_t v = 0; v < point.size(); ++v) point[v] = v;
-  for (std::size_t p = 0; p < volume.point_vertex.size(); ++p) {
-    if (volume.point_vertex[p] != render::kNoVertex) point[volume.point_vertex[p]] = p;
-  }
-  return point;
-}
-
 // This rank's answers for one set: held[i] and, if so, the fields at point i.
 void sample_locally(const config::ProbeSet& set, const FieldVolume& volume,
                     std::span<const FieldView> fields, std::vector<std::uint8_t>& held,
                     std::vector<double>& values) {
   const render::TetVolume& store = volume.volume();
-  const std::vector<std::size_t> point_of = vertex_points(store);
+  const std::vector<std::size_t> point_of = render::vertex_points(store);
   std::vector<FieldView> views;
   for (const std::string& name : set.fields) views.push_back(field_or_empty(fields, name));
   for (std::size_t i = 0; i < set.points.size(); ++i) {

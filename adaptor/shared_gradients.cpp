@@ -9,30 +9,16 @@
 namespace tetray {
 namespace {
 
-// The caller's point of each vertex (the inverse of TetVolume::point_vertex).
-std::vector<std::uint32_t> vertex_points(const render::TetVolume& volume) {
-  std::vector<std::uint32_t> point(volume.vertices.size());
-  if (volume.point_vertex.empty()) {
-    for (std::size_t k = 0; k < point.size(); ++k) point[k] = static_cast<std::uint32_t>(k);
-    return point;
-  }
-  for (std::size_t p = 0; p < volume.point_vertex.size(); ++p) {
-    if (volume.point_vertex[p] != render::kNoVertex) {
-      point[volume.point_vertex[p]] = static_cast<std::uint32_t>(p);
-    }
-  }
-  return point;
-}
-
 // The caller's points on the boundary faces of the rank's tets, ascending.
 std::vector<std::uint32_t> boundary_points(const render::TetVolume& volume) {
   const auto adjacency = render::build_face_adjacency<render::Tet16>(volume);
-  const std::vector<std::uint32_t> point = vertex_points(volume);
+  const std::vector<std::size_t> point = render::vertex_points(volume);
   std::vector<std::uint32_t> points;
   points.reserve(3 * adjacency.boundary.size());
   for (const render::BoundaryFaceRef& face : adjacency.boundary) {
     for (std::uint32_t c = 0; c < 4; ++c) {
-      if (c != face.opposite) points.push_back(point[volume.tets[face.tet].v[c]]);
+      if (c != face.opposite)
+        points.push_back(static_cast<std::uint32_t>(point[volume.tets[face.tet].v[c]]));
     }
   }
   std::sort(points.begin(), points.end());

@@ -45,4 +45,14 @@ struct TetVolume {
   }
 };
 
+// The caller's point of every vertex (the inverse of point_vertex; the same index without it).
+inline std::vector<std::size_t> vertex_points(const TetVolume& volume) {
+  std::vector<std::size_t> point(volume.vertices.size());
+  for (std::size_t v = 0; v < point.size(); ++v) point[v] = v;
+  for (std::size_t p = 0; p < volume.point_vertex.size(); ++p) {
+    if (volume.point_vertex[p] != kNoVertex) point[volume.point_vertex[p]] = p;
+  }
+  return point;
+}
+
 }  // namespace tetray::render
