@@ -18,7 +18,8 @@
 // Packets: a polygon whose corners all lie outside one plane of the packet's frustum is skipped
 // (four plane tests, no division: a third of the polygons of tets that meet the frustum lie
 // beside it), and of the others only the packet rows the polygon's projection covers are tested
-// (restrict_to_rows), usually one to three rows of a 16x16 packet. (A test of the packet's corner
+// (restrict_to_projection), usually one to three rows of a 16x16 packet, and in packets wider
+// than a lane batch only the batches of each row its columns reach. (A test of the packet's corner
 // rays against the edge planes, to skip the rows too, cost more than the rows it saved once the
 // rows were cut this tight.)
 #pragma once
@@ -64,10 +65,10 @@ class IsopolygonIntersector {
       rel[c] = poly.xyz[c] - simd::Float4(eye[c]);
       rel[c].store_aligned(s.rel[c]);
     }
-    int begin = first_active, end = Packet::kRays;
+    int begin = first_active, end = Packet::kRays, first_column = 0, last_column = S - 1;
     if constexpr (S > 1) {
       if (packet_.frustum.misses_hull(rel)) return culled();
-      restrict_to_rows(rel, begin, end);
+      restrict_to_projection(rel, begin, end, first_column, last_column);
     }
     alignas(16) float corner[3][4];
     for (int c = 0; c < 3; ++c) poly.xyz[c].store_aligned(corner[c]);
@@ -78,9 +79,9 @@ class IsopolygonIntersector {
     // equals vertex values) holds no surface; its neighbours hold it. Its edge values would all
     // be zero, and "inside" for every ray.
     if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) begin = end;
-    if (begin >= end) return culled();
+    if (begin >= end || first_column > last_column) return culled();
     edge_normals(poly, s);
-    return intersect_rays(s, id, begin, end);
+    return intersect_rays(s, id, begin, end, first_column, last_column);
   }
 
  private:
@@ -100,10 +101,21 @@ class IsopolygonIntersector {
     Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
   };
 
-  bool intersect_rays(Setup& s, const PolygonHit& id, int begin, int end) {
+  // Tests the lane batches of rays [begin, end) that hold a column of [first_column,
+  // last_column] (every batch where a batch spans whole rows).
+  bool intersect_rays(Setup& s, const PolygonHit& id, int begin, int end, int first_column,
+                      int last_column) {
     s.plane = dot(s.normal, s.corner(0));
     bool any_hit = false;
-    for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
+    if constexpr (S > W) {
+      const int first_batch = first_column / W * W;
+      for (int row = begin / S * S; row < end; row += S)
+        for (int base = std::max(row + first_batch, begin / W * W); base <= row + last_column;
+             base += W)
+          any_hit |= intersect_lanes(s, id, base);
+    } else {
+      for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
+    }
     return any_hit;
   }
 
@@ -127,32 +139,47 @@ class IsopolygonIntersector {
     for (int c = 0; c < 3; ++c) xsimd::select(forward, n[c], -n[c]).store_aligned(s.edge[c]);
   }
 
-  // Narrows [begin, end) to the packet rows the polygon's projection covers (a convex
-  // polygon in front of the eye projects inside its vertices' row range); polygons reaching
-  // behind the eye keep every row. The margin, 1/16 row plus 1e-5 of the row value, is far
-  // above the rounding of the projection (about 1e-3 row at 1024 rows) and of the rays' own
-  // directions, so a ray on the polygon's top or bottom vertex is never cut off.
-  void restrict_to_rows(const simd::Float4 (&rel)[3], int& begin, int& end) const {
+  // Narrows [begin, end) to the packet rows the polygon's projection covers, and for packets
+  // wider than a lane batch [first_column, last_column] to its columns (a convex polygon in
+  // front of the eye projects inside its vertices' ranges); polygons reaching behind the eye
+  // keep every row and column.
+  void restrict_to_projection(const simd::Float4 (&rel)[3], int& begin, int& end, int& first_column,
+                              int& last_column) const {
     using simd::Float4;
-    const Vec3f f = packet_.forward, u = packet_.up;
+    const Vec3f f = packet_.forward, u = packet_.up, r = packet_.right;
     const Float4 depth = rel[0] * f.x + rel[1] * f.y + rel[2] * f.z;
     if (!xsimd::all(depth > Float4(0.0f))) return;
     const Float4 height = rel[0] * u.x + rel[1] * u.y + rel[2] * u.z;
-    alignas(16) float rows[4];
-    (Float4(packet_.row_center) - Float4(packet_.row_scale) * height / depth).store_aligned(rows);
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (float row : rows) {
-      lo = std::min(lo, row);
-      hi = std::max(hi, row);
-    }
-    constexpr float kRowMargin = 1.0f / 16, kRelativeMargin = 1e-5f;
-    lo -= kRowMargin + kRelativeMargin * std::abs(lo);
-    hi += kRowMargin + kRelativeMargin * std::abs(hi);
-    // Clamped before the conversion: a polygon far off the packet projects to huge rows.
-    const int first_row = static_cast<int>(std::clamp(std::ceil(lo), 0.0f, float(S)));
-    const int last_row = static_cast<int>(std::clamp(std::floor(hi), -1.0f, float(S - 1)));
+    int first_row = 0, last_row = S - 1;
+    covered_range(Float4(packet_.row_center) - Float4(packet_.row_scale) * height / depth,
+                  first_row, last_row);
     begin = std::max(begin, first_row * S);
     end = std::min(end, (last_row + 1) * S);
+    if constexpr (S > W) {
+      const Float4 across = rel[0] * r.x + rel[1] * r.y + rel[2] * r.z;
+      covered_range(Float4(packet_.column_center) + Float4(packet_.column_scale) * across / depth,
+                    first_column, last_column);
+    }
+  }
+
+  // The packet rows (or columns) [first, last] whose centers lie within the range of four
+  // projected positions. The margin, 1/16 row plus 1e-5 of the position, is far above the
+  // rounding of the projection (about 1e-3 row at 1024 rows) and of the rays' own directions,
+  // so a ray through the polygon's extreme vertex is never cut off.
+  static void covered_range(simd::Float4 positions, int& first, int& last) {
+    alignas(16) float p[4];
+    positions.store_aligned(p);
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (float v : p) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    constexpr float kMargin = 1.0f / 16, kRelativeMargin = 1e-5f;
+    lo -= kMargin + kRelativeMargin * std::abs(lo);
+    hi += kMargin + kRelativeMargin * std::abs(hi);
+    // Clamped before the conversion: a polygon far off the packet projects to huge positions.
+    first = static_cast<int>(std::clamp(std::ceil(lo), 0.0f, float(S)));
+    last = static_cast<int>(std::clamp(std::floor(hi), -1.0f, float(S - 1)));
   }
 
   bool intersect_lanes(const Setup& s, const PolygonHit& id, int base) {

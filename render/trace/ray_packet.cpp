@@ -79,6 +79,10 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
   // Row j's center has ndc_y = (1 - 2 (j + 0.5) / H) scale_y.
   packet.row_scale = static_cast<float>(camera.height / (2.0 * frame.scale_y));
   packet.row_center = static_cast<float>(camera.height / 2.0 - 0.5 - y0);
+  // Column i's center has ndc_x = (2 (i + 0.5) / W - 1) scale_x.
+  packet.right = static_cast<Vec3f>(frame.right);
+  packet.column_scale = static_cast<float>(camera.width / (2.0 * frame.scale_x));
+  packet.column_center = static_cast<float>(camera.width / 2.0 - 0.5 - x0);
 }
 
 template <int S>

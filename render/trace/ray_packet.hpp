@@ -36,10 +36,12 @@ struct alignas(64) RayPacket {
   float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
   int rays_without_hit = 0;    // rays in the image still without a hit: while any is left,
                                // tmax_bound stays infinite and needs no update
-  // Image rows of points (relative to the eye) in packet row units:
-  // row = row_center - row_scale * dot(p, up) / dot(p, forward).
-  Vec3f forward, up;
+  // Image rows and columns of points (relative to the eye) in packet units:
+  // row = row_center - row_scale * dot(p, up) / dot(p, forward),
+  // column = column_center + column_scale * dot(p, right) / dot(p, forward).
+  Vec3f forward, up, right;
   float row_center = 0, row_scale = 0;
+  float column_center = 0, column_scale = 0;
 };
 
 // The frustum of the tile of S x S pixels whose top-left pixel is (x0, y0) (its part in the

@@ -95,6 +95,7 @@ void finish_shadow_packet(RayPacket<S>& packet, const PacketFrustum& frustum) {
   packet.rays_without_hit = 0;
   packet.forward = {0, 0, 0};
   packet.up = {0, 0, 0};
+  packet.right = {0, 0, 0};
 }
 
 // The tile's rays from a point light at `light` (local) to its hit points; bit `bit` of
