@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/bvh/bounds.hpp"
 #include "render/walk/face_crossing.hpp"
 
 namespace tetray::render {
@@ -76,6 +77,9 @@ std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bv
       continue;
     }
     for (std::uint32_t t = node.first; t < node.first + node.count; ++t) {
+      // The tet's own box first (the padding covers every point in_tet accepts): most tets of
+      // a leaf are ruled out without the weights in double.
+      if (!box_contains(tet_bounds(volume, volume.tets[t]), local)) continue;
       const std::optional<PointLocation> found = in_tet(volume, t, local);
       if (found && (!best || volume.tet_ids[t] < volume.tet_ids[best->tet])) best = found;
     }
