@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "bench_targets.hpp"
 #include "tools/bench_common/json_file.hpp"
 
 namespace tetray::bench {
@@ -73,6 +74,14 @@ Json::Value scene(const SceneFigures& figures) {
   json["shading"] = shading_json(figures.shading);
   json["layers"] = layers_json(figures.layers);
   json["cap"] = cap_json(figures.cap);
+  for (const TargetCheck& check : check_targets(figures)) {
+    Json::Value target;
+    target["name"] = check.name;
+    target["measured"] = check.measured;
+    target["target"] = check.target;
+    target["pass"] = check.pass;
+    json["targets"].append(target);
+  }
   return json;
 }
 
