@@ -7,6 +7,8 @@
 #include <xsimd/xsimd.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -88,9 +90,9 @@ inline int bits4(Mask4 m) {
 
 // Lanewise lexicographic a < b over N components: the first component that differs decides.
 // Compares only, so the result is exact and needs no branch.
-template <int N>
-inline Mask4 lexicographic_less(const Float4* a, const Float4* b) {
-  Mask4 less = a[N - 1] < b[N - 1];
+template <int N, typename Batch>
+inline auto lexicographic_less(const Batch* a, const Batch* b) {
+  auto less = a[N - 1] < b[N - 1];
   for (int c = N - 2; c >= 0; --c) less = (a[c] < b[c]) | ((a[c] == b[c]) & less);
   return less;
 }
@@ -114,9 +116,12 @@ inline float load(const float* p, float) { return *p; }
 inline void store(float* p, Floats v) { v.store_aligned(p); }
 inline void store(float* p, float v) { *p = v; }
 
-inline Floats vmin(Floats a, Floats b) { return xsimd::min(a, b); }
+// Compare and select, as the min and max instructions define them (the second operand where the
+// two are equal or either is NaN): GCC 12 reports its own AVX-512 min and max as reading an
+// uninitialized value.
+inline Floats vmin(Floats a, Floats b) { return xsimd::select(a < b, a, b); }
 inline float vmin(float a, float b) { return a < b ? a : b; }
-inline Floats vmax(Floats a, Floats b) { return xsimd::max(a, b); }
+inline Floats vmax(Floats a, Floats b) { return xsimd::select(a > b, a, b); }
 inline float vmax(float a, float b) { return a > b ? a : b; }
 inline Floats select(Mask m, Floats a, Floats b) { return xsimd::select(m, a, b); }
 inline float select(bool m, float a, float b) { return m ? a : b; }
@@ -179,6 +184,42 @@ inline Ints gather(const std::int32_t* base, Ints index) {
   return _mm256_i32gather_epi32(base, index, sizeof(std::int32_t));
 #else
   return gather_each_lane<Ints>(base, index);
+#endif
+}
+
+// Rounding up and down, and truncation to integers, lanewise or of one float. The AVX-512 forms
+// take an explicit start value: GCC 12 reports the undefined one of xsimd's as uninitialized.
+inline Floats ceil(Floats v) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_mask_roundscale_ps(v, 0xffff, v, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
+#else
+  return xsimd::ceil(v);
+#endif
+}
+inline Floats floor(Floats v) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_mask_roundscale_ps(v, 0xffff, v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+#else
+  return xsimd::floor(v);
+#endif
+}
+inline float ceil(float v) { return std::ceil(v); }
+inline float floor(float v) { return std::floor(v); }
+inline Ints to_int(Floats v) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_mask_cvttps_epi32(_mm512_setzero_si512(), 0xffff, v);
+#else
+  return xsimd::to_int(v);
+#endif
+}
+
+// Lane k of the result is table[index[k]], from a table of 16 int32 (64-byte aligned) and
+// indices in [0, 16): one permute where the registers hold 16 lanes.
+inline Ints lookup16(const std::int32_t* table, Ints index) {
+#if XSIMD_WITH_AVX512F
+  return _mm512_permutexvar_epi32(index, _mm512_load_si512(table));
+#else
+  return gather(table, index);
 #endif
 }
 
@@ -330,6 +371,52 @@ inline std::uint64_t bits(Mask m) {
 #endif
 }
 inline std::uint64_t bits(bool m) { return m ? 1u : 0u; }
+
+// Writes the lanes of `v` where `m` is set to `out`, in lane order, and returns how many; `out`
+// has room for a whole batch (the lanes past the count are written with garbage).
+template <typename Batch, typename T>
+inline int compress_store(Batch v, Mask m, T* out) {
+#if XSIMD_WITH_AVX512F
+  if constexpr (std::is_same_v<T, float>) {
+    _mm512_storeu_ps(out, _mm512_maskz_compress_ps(static_cast<__mmask16>(m), v));
+  } else {
+    _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(static_cast<__mmask16>(m), v));
+  }
+  return std::popcount(static_cast<unsigned>(static_cast<__mmask16>(m)));
+#else
+  alignas(64) T lanes[kWidth];
+  v.store_aligned(lanes);
+  int n = 0;
+  for (std::uint64_t b = bits(m); b; b &= b - 1) out[n++] = lanes[std::countr_zero(b)];
+  return n;
+#endif
+}
+
+// The largest lane (no NaN among them), of a batch or of one float.
+inline float max_of(Floats v) {
+#if XSIMD_WITH_AVX512F
+  // Halves folded with unmasked maxima (GCC 12 reports _mm512_reduce_max_ps's as uninitialized).
+  const __m256 upper = _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1));
+  const __m256 m8 = _mm256_max_ps(_mm512_castps512_ps256(v), upper);
+  __m128 m4 = _mm_max_ps(_mm256_castps256_ps128(m8), _mm256_extractf128_ps(m8, 1));
+  m4 = _mm_max_ps(m4, _mm_movehl_ps(m4, m4));
+  return _mm_cvtss_f32(_mm_max_ss(m4, _mm_shuffle_ps(m4, m4, 1)));
+#else
+  alignas(64) float lanes[kWidth];
+  v.store_aligned(lanes);
+  float m = lanes[0];
+  for (int k = 1; k < kWidth; ++k) m = lanes[k] > m ? lanes[k] : m;
+  return m;
+#endif
+}
+inline float max_of(float v) { return v; }
+
+// The smallest of four lanes (no NaN among them).
+inline float min_of(Float4 v) {
+  alignas(16) float lanes[4];
+  v.store_aligned(lanes);
+  return std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
+}
 
 // Bytes one streaming store writes; destinations of stream_copy are aligned to it.
 inline constexpr std::size_t kStreamBytes = sizeof(float) * kWidth;

@@ -21,8 +21,45 @@ struct IsoCase {
   std::int32_t vertex_count;  // 0, 3 or 4
 };
 
+// Builds the marching-tetrahedra table: the lone vertex of a 1-3 split gives a triangle of its
+// three edges (the first listed again as the fourth); a 2-2 split {a0, a1} | {b0, b1} gives the
+// quad a0b0, a0b1, a1b1, a1b0, whose consecutive vertices share a tet face.
+constexpr std::array<IsoCase, 16> make_iso_cases() {
+  std::array<IsoCase, 16> table{};
+  for (int c = 0; c < 16; ++c) {
+    int above[4], below[4], na = 0, nb = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (c & (1 << i)) {
+        above[na++] = i;
+      } else {
+        below[nb++] = i;
+      }
+    }
+    IsoCase& entry = table[c];
+    if (na == 0 || nb == 0) continue;
+    if (na == 1 || nb == 1) {
+      const int lone = na == 1 ? above[0] : below[0];
+      const int* others = na == 1 ? below : above;
+      entry.vertex_count = 3;
+      for (int k = 0; k < 4; ++k) {
+        entry.ends[0][k] = lone;
+        entry.ends[1][k] = others[k % 3];
+      }
+      continue;
+    }
+    entry.vertex_count = 4;
+    const int order[4][2] = {
+        {above[0], below[0]}, {above[0], below[1]}, {above[1], below[1]}, {above[1], below[0]}};
+    for (int k = 0; k < 4; ++k) {
+      entry.ends[0][k] = order[k][0];
+      entry.ends[1][k] = order[k][1];
+    }
+  }
+  return table;
+}
+
 // The table for case = sum of (f_i >= iso) << i.
-const std::array<IsoCase, 16>& iso_cases();
+inline constexpr std::array<IsoCase, 16> kIsoCases = make_iso_cases();
 
 // A tet's four vertices as components: lane k of column c is component c (x, y, z, f) of
 // vertex k.
@@ -62,21 +99,22 @@ struct Isopolygon {
 // clamped to the edge's bounding box, which rounding could otherwise leave by an ulp (the BVH
 // bounds the vertices, not the polygons). Selects and compares only: the order of random edge
 // ends is unpredictable, and a branch on it cost more than the arithmetic.
-inline void edge_crossings(const simd::Float4 (&a)[4], const simd::Float4 (&b)[4], float iso,
-                           simd::Float4 (&xyz)[3]) {
-  using simd::Float4;
-  const simd::Mask4 a_first = simd::lexicographic_less<4>(a, b);
-  const Float4 pf = xsimd::select(a_first, a[3], b[3]), qf = xsimd::select(a_first, b[3], a[3]);
-  const Float4 value(iso);
+// The lanes are the four edges of one tet (simd::Float4), or one edge of a batch of tets
+// (polygon_block.hpp): the same operations either way, hence the same bits.
+template <typename Batch>
+inline void edge_crossings(const Batch (&a)[4], const Batch (&b)[4], float iso, Batch (&xyz)[3]) {
+  const auto a_first = simd::lexicographic_less<4>(a, b);
+  const Batch pf = xsimd::select(a_first, a[3], b[3]), qf = xsimd::select(a_first, b[3], a[3]);
+  const Batch value(iso);
   // 0 / 0 only where pf == qf; one end equals the isovalue there and is chosen below.
-  const Float4 s = (value - pf) / (qf - pf);
+  const Batch s = (value - pf) / (qf - pf);
   for (int c = 0; c < 3; ++c) {
-    const Float4 from = xsimd::select(a_first, a[c], b[c]), to = xsimd::select(a_first, b[c], a[c]);
-    const Float4 along = from + s * (to - from);
+    const Batch from = xsimd::select(a_first, a[c], b[c]), to = xsimd::select(a_first, b[c], a[c]);
+    const Batch along = from + s * (to - from);
     // std::clamp(along, std::min(from, to), std::max(from, to)), with its exact comparisons.
-    const Float4 lo = xsimd::select(to < from, to, from), hi = xsimd::select(from < to, to, from);
-    const Float4 above = xsimd::select(along < lo, lo, along);
-    const Float4 crossing = xsimd::select(hi < above, hi, above);
+    const Batch lo = xsimd::select(to < from, to, from), hi = xsimd::select(from < to, to, from);
+    const Batch above = xsimd::select(along < lo, lo, along);
+    const Batch crossing = xsimd::select(hi < above, hi, above);
     xyz[c] = xsimd::select(pf == value, from, xsimd::select(qf == value, to, crossing));
   }
 }
@@ -84,7 +122,7 @@ inline void edge_crossings(const simd::Float4 (&a)[4], const simd::Float4 (&b)[4
 // The isopolygon of a tet for an isovalue and its case (iso_case; 0 and 15 give none). The
 // edge ends are the corners permuted by the case's lanes.
 inline Isopolygon extract_isopolygon(const TetCorners& corners, int case_index, float iso) {
-  const IsoCase& entry = iso_cases()[case_index];
+  const IsoCase& entry = kIsoCases[case_index];
   Isopolygon poly;
   poly.vertex_count = entry.vertex_count;
   simd::Float4 a[4], b[4];

@@ -42,6 +42,148 @@ struct PolygonHit {
   std::int32_t iso;   // isovalue index
 };
 
+// What a polygon's ray tests need that depends only on the polygon and the eye, so a polygon
+// seen by several packets is set up once. Per corner k (and the edge from it to corner k + 1),
+// component c at [c][k].
+struct PolygonSetup {
+  alignas(16) float rel[3][4];   // corners relative to the eye
+  alignas(16) float edge[3][4];  // edge plane normals (zero for a triangle's repeated corner)
+  Vec3f normal;                  // polygon plane normal
+  float plane = 0;               // dot(normal, rel[.][0])
+  float near_floor = 0;          // no distance to the polygon is computed below it (near_floor)
+
+  Vec3f corner(int k) const { return {rel[0][k], rel[1][k], rel[2][k]}; }
+  Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
+};
+
+// The corners relative to the eye (the first part of a set-up).
+inline void relative_corners(const Isopolygon& poly, Vec3f eye, simd::Float4 (&rel)[3],
+                             PolygonSetup& s) {
+  const float e[3] = {eye.x, eye.y, eye.z};
+  for (int c = 0; c < 3; ++c) {
+    rel[c] = poly.xyz[c] - simd::Float4(e[c]);
+    rel[c].store_aligned(s.rel[c]);
+  }
+}
+
+// The view depths of four points relative to the eye (zero with the projection of shadow rays,
+// which have no view axis).
+inline simd::Float4 view_depths(const simd::Float4 (&rel)[3], const RowProjection& p) {
+  return rel[0] * p.forward.x + rel[1] * p.forward.y + rel[2] * p.forward.z;
+}
+
+// The floor under every distance computed to a polygon (distance()) from the smallest view depth
+// of its corners: a ray's distance to a point is at least the point's depth, and depth is linear
+// over the polygon, so a well-conditioned distance never lies below it; the floor sits below it
+// by far more than the rounding of either (2^-16 of it plus the frame's depth_slack). Where a ray
+// grazes the polygon's plane, the division behind the distance is ill-conditioned; the floor then
+// keeps the result at the polygon's depth, as it keeps every result, which is what lets a
+// polygon be culled by its depth alone (intersect_rays). For one polygon (float) or lanewise.
+template <typename F>
+inline F near_floor(F nearest_depth, float depth_slack) {
+  return nearest_depth - (xsimd::abs(nearest_depth) * 0x1p-16f + F(depth_slack));
+}
+
+// Normals of the planes through the eye and the edges p -> q, lanewise (see the file comment):
+// the ends ordered by position, n = (a - e) x (b - a), negated where the edge runs from b to a.
+template <typename Batch>
+inline void edge_plane_normals(const Batch (&p)[3], const Batch (&q)[3], Vec3f eye, Batch (&n)[3]) {
+  const auto forward = simd::lexicographic_less<3>(p, q);
+  const float e[3] = {eye.x, eye.y, eye.z};
+  Batch u[3], v[3];
+  for (int c = 0; c < 3; ++c) {
+    const Batch a = xsimd::select(forward, p[c], q[c]), b = xsimd::select(forward, q[c], p[c]);
+    u[c] = a - Batch(e[c]);
+    v[c] = b - a;
+  }
+  const Batch m[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                      u[0] * v[1] - u[1] * v[0]};
+  for (int c = 0; c < 3; ++c) n[c] = xsimd::select(forward, m[c], -m[c]);
+}
+
+// The four edges k -> k + 1 of a polygon in the lanes of one register.
+inline void edge_normals(const Isopolygon& poly, Vec3f eye, PolygonSetup& s) {
+  using simd::Float4;
+  const Float4(&p)[3] = poly.xyz;
+  const Float4 q[3] = {simd::next_lane(p[0]), simd::next_lane(p[1]), simd::next_lane(p[2])};
+  Float4 n[3];
+  edge_plane_normals(p, q, eye, n);
+  for (int c = 0; c < 3; ++c) n[c].store_aligned(s.edge[c]);
+}
+
+// The plane of the polygon and its edges' planes; false for a polygon of zero area (all its
+// vertices on one tet vertex or edge, where the isovalue equals vertex values): it holds no
+// surface, its neighbours hold it, and its edge values would all be zero, "inside" for every ray.
+inline bool polygon_planes(const Isopolygon& poly, Vec3f eye, PolygonSetup& s) {
+  alignas(16) float corner[3][4];
+  for (int c = 0; c < 3; ++c) poly.xyz[c].store_aligned(corner[c]);
+  auto p = [&](int k) { return Vec3f{corner[0][k], corner[1][k], corner[2][k]}; };
+  // For a triangle (p[3] == p[0]) this is bitwise cross(p[1] - p[0], p[2] - p[0]).
+  s.normal = cross(p(2) - p(0), p(3) - p(1));
+  if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) return false;
+  edge_normals(poly, eye, s);
+  s.plane = dot(s.normal, s.corner(0));
+  return true;
+}
+
+// The pixel rows (or columns) [first, last], clamped to [0, limit] (first limit + 1 or last -1
+// where none), whose centers lie in [lo, hi] widened by a margin: 1/16 pixel plus 1e-5 of the
+// position, far above the rounding of the projection (about 1e-3 row at 1024 rows) and of the
+// rays' own directions, so a ray through the polygon's extreme vertex is never cut off. For one
+// range (float) or lanewise (simd::Floats, tile_polygons.cpp).
+template <typename F>
+inline void covered_pixels(F lo, F hi, int limit, F& first, F& last) {
+  const F margin(1.0f / 16), relative(1e-5f), none_before(-1.0f), end(float(limit + 1));
+  const F ceiling = simd::ceil(lo - (margin + relative * xsimd::abs(lo)));
+  const F floor = simd::floor(hi + (margin + relative * xsimd::abs(hi)));
+  // Clamped before any conversion: a polygon far off the packet projects to huge positions.
+  first = simd::select(ceiling < F(0.0f), F(0.0f), simd::select(ceiling > end, end, ceiling));
+  last = simd::select(floor < none_before, none_before,
+                      simd::select(floor > end - 1.0f, end - 1.0f, floor));
+}
+
+// The rows (or columns) within [0, limit] whose centers lie within the range of four projected
+// positions.
+inline void covered_range(simd::Float4 positions, int limit, int& first, int& last) {
+  alignas(16) float p[4];
+  positions.store_aligned(p);
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (float v : p) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  float first_center = 0, last_center = 0;
+  covered_pixels(lo, hi, limit, first_center, last_center);
+  first = static_cast<int>(first_center);
+  last = static_cast<int>(last_center);
+}
+
+// The rows and columns, within [0, last_row] and [0, last_column], that the polygon's projection
+// covers (a convex polygon in front of the eye projects inside its vertices' ranges), given its
+// corners relative to the eye and their view depths; a polygon reaching behind the eye covers
+// them all. Columns are left whole unless `columns`.
+struct CoveredPixels {
+  int first_row, last_row, first_column, last_column;
+};
+
+inline CoveredPixels project_rows(const simd::Float4 (&rel)[3], simd::Float4 depth,
+                                  const RowProjection& p, int last_row, int last_column,
+                                  bool columns) {
+  using simd::Float4;
+  CoveredPixels covered{0, last_row, 0, last_column};
+  if (!xsimd::all(depth > Float4(0.0f))) return covered;
+  const Vec3f u = p.up, r = p.right;
+  const Float4 height = rel[0] * u.x + rel[1] * u.y + rel[2] * u.z;
+  covered_range(Float4(p.row_center) - Float4(p.row_scale) * height / depth, last_row,
+                covered.first_row, covered.last_row);
+  if (columns) {
+    const Float4 across = rel[0] * r.x + rel[1] * r.y + rel[2] * r.z;
+    covered_range(Float4(p.column_center) + Float4(p.column_scale) * across / depth, last_column,
+                  covered.first_column, covered.last_column);
+  }
+  return covered;
+}
+
 // A hit filter (clip_region.hpp) may discard hits by their point; the default keeps all and
 // compiles to nothing.
 template <int S, bool kStats, typename HitFilter = NoHitFilter>
@@ -58,30 +200,45 @@ class IsopolygonIntersector {
   // nearest hit.
   bool intersect(const Isopolygon& poly, const PolygonHit& id, int first_active) {
     if (poly.vertex_count < 3) return false;
-    Setup s;
-    const float eye[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
+    PolygonSetup s;
     simd::Float4 rel[3];
-    for (int c = 0; c < 3; ++c) {
-      rel[c] = poly.xyz[c] - simd::Float4(eye[c]);
-      rel[c].store_aligned(s.rel[c]);
-    }
-    int begin = first_active, end = Packet::kRays, first_column = 0, last_column = S - 1;
+    relative_corners(poly, packet_.eye, rel, s);
+    const simd::Float4 depth = view_depths(rel, packet_.projection);
+    s.near_floor = near_floor(simd::min_of(depth), packet_.projection.depth_slack);
+    CoveredPixels covered{0, S - 1, 0, S - 1};
     if constexpr (S > 1) {
       if (packet_.frustum.misses_hull(rel)) return culled();
-      restrict_to_projection(rel, begin, end, first_column, last_column);
+      covered = project_rows(rel, depth, packet_.projection, S - 1, S - 1, S > W);
     }
-    alignas(16) float corner[3][4];
-    for (int c = 0; c < 3; ++c) poly.xyz[c].store_aligned(corner[c]);
-    auto p = [&](int k) { return Vec3f{corner[0][k], corner[1][k], corner[2][k]}; };
-    // For a triangle (p[3] == p[0]) this is bitwise cross(p[1] - p[0], p[2] - p[0]).
-    s.normal = cross(p(2) - p(0), p(3) - p(1));
-    // A polygon of zero area (all its vertices on one tet vertex or edge, where the isovalue
-    // equals vertex values) holds no surface; its neighbours hold it. Its edge values would all
-    // be zero, and "inside" for every ray.
-    if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) begin = end;
-    if (begin >= end || first_column > last_column) return culled();
-    edge_normals(poly, s);
-    return intersect_rays(s, id, begin, end, first_column, last_column);
+    const int begin = std::max(first_active, covered.first_row * S);
+    const int end = (covered.last_row + 1) * S;
+    if (begin >= end || covered.first_column > covered.last_column ||
+        !polygon_planes(poly, packet_.eye, s))
+      return culled();
+    return intersect_rays(s, id, begin, end, covered.first_column, covered.last_column);
+  }
+
+  // Tests the lane batches of rays [begin, end) that hold a column of [first_column,
+  // last_column] (every batch where a batch spans whole rows) against a polygon set up for the
+  // packet's eye. A batch whose every ray has a hit nearer than the polygon's distance floor is
+  // skipped (occlusion culling per batch, exact: no distance computed to the polygon can win).
+  bool intersect_rays(const PolygonSetup& s, const PolygonHit& id, int begin, int end,
+                      int first_column, int last_column) {
+    bool any_hit = false;
+    const auto test = [&](int base) {
+      if (s.near_floor > packet_.batch_far[base / W]) return;
+      any_hit |= intersect_lanes(s, id, base);
+    };
+    if constexpr (S > W) {
+      const int first_batch = first_column / W * W;
+      for (int row = begin / S * S; row < end; row += S)
+        for (int base = std::max(row + first_batch, begin / W * W); base <= row + last_column;
+             base += W)
+          test(base);
+    } else {
+      for (int base = begin / W * W; base < end; base += W) test(base);
+    }
+    return any_hit;
   }
 
  private:
@@ -90,99 +247,7 @@ class IsopolygonIntersector {
     return false;
   }
 
-  // Per corner k (and the edge from it to corner k + 1), component c at [c][k].
-  struct Setup {
-    alignas(16) float rel[3][4];   // corners relative to the eye
-    alignas(16) float edge[3][4];  // edge plane normals (zero for a triangle's repeated corner)
-    Vec3f normal;                  // polygon plane normal
-    float plane = 0;               // dot(normal, rel[.][0])
-
-    Vec3f corner(int k) const { return {rel[0][k], rel[1][k], rel[2][k]}; }
-    Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
-  };
-
-  // Tests the lane batches of rays [begin, end) that hold a column of [first_column,
-  // last_column] (every batch where a batch spans whole rows).
-  bool intersect_rays(Setup& s, const PolygonHit& id, int begin, int end, int first_column,
-                      int last_column) {
-    s.plane = dot(s.normal, s.corner(0));
-    bool any_hit = false;
-    if constexpr (S > W) {
-      const int first_batch = first_column / W * W;
-      for (int row = begin / S * S; row < end; row += S)
-        for (int base = std::max(row + first_batch, begin / W * W); base <= row + last_column;
-             base += W)
-          any_hit |= intersect_lanes(s, id, base);
-    } else {
-      for (int base = begin / W * W; base < end; base += W) any_hit |= intersect_lanes(s, id, base);
-    }
-    return any_hit;
-  }
-
-  // Normals of the planes through the eye and each edge k -> k + 1 (see the file comment), the
-  // four edges in the lanes of one register: the ends ordered by position, n = (a - e) x (b - a),
-  // negated where the polygon walks the edge from b to a.
-  void edge_normals(const Isopolygon& poly, Setup& s) const {
-    using simd::Float4;
-    const Float4* p = poly.xyz;
-    const Float4 q[3] = {simd::next_lane(p[0]), simd::next_lane(p[1]), simd::next_lane(p[2])};
-    const simd::Mask4 forward = simd::lexicographic_less<3>(p, q);
-    const float eye[3] = {packet_.eye.x, packet_.eye.y, packet_.eye.z};
-    Float4 u[3], v[3];
-    for (int c = 0; c < 3; ++c) {
-      const Float4 a = xsimd::select(forward, p[c], q[c]), b = xsimd::select(forward, q[c], p[c]);
-      u[c] = a - Float4(eye[c]);
-      v[c] = b - a;
-    }
-    const Float4 n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
-    for (int c = 0; c < 3; ++c) xsimd::select(forward, n[c], -n[c]).store_aligned(s.edge[c]);
-  }
-
-  // Narrows [begin, end) to the packet rows the polygon's projection covers, and for packets
-  // wider than a lane batch [first_column, last_column] to its columns (a convex polygon in
-  // front of the eye projects inside its vertices' ranges); polygons reaching behind the eye
-  // keep every row and column.
-  void restrict_to_projection(const simd::Float4 (&rel)[3], int& begin, int& end, int& first_column,
-                              int& last_column) const {
-    using simd::Float4;
-    const Vec3f f = packet_.forward, u = packet_.up, r = packet_.right;
-    const Float4 depth = rel[0] * f.x + rel[1] * f.y + rel[2] * f.z;
-    if (!xsimd::all(depth > Float4(0.0f))) return;
-    const Float4 height = rel[0] * u.x + rel[1] * u.y + rel[2] * u.z;
-    int first_row = 0, last_row = S - 1;
-    covered_range(Float4(packet_.row_center) - Float4(packet_.row_scale) * height / depth,
-                  first_row, last_row);
-    begin = std::max(begin, first_row * S);
-    end = std::min(end, (last_row + 1) * S);
-    if constexpr (S > W) {
-      const Float4 across = rel[0] * r.x + rel[1] * r.y + rel[2] * r.z;
-      covered_range(Float4(packet_.column_center) + Float4(packet_.column_scale) * across / depth,
-                    first_column, last_column);
-    }
-  }
-
-  // The packet rows (or columns) [first, last] whose centers lie within the range of four
-  // projected positions. The margin, 1/16 row plus 1e-5 of the position, is far above the
-  // rounding of the projection (about 1e-3 row at 1024 rows) and of the rays' own directions,
-  // so a ray through the polygon's extreme vertex is never cut off.
-  static void covered_range(simd::Float4 positions, int& first, int& last) {
-    alignas(16) float p[4];
-    positions.store_aligned(p);
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (float v : p) {
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-    constexpr float kMargin = 1.0f / 16, kRelativeMargin = 1e-5f;
-    lo -= kMargin + kRelativeMargin * std::abs(lo);
-    hi += kMargin + kRelativeMargin * std::abs(hi);
-    // Clamped before the conversion: a polygon far off the packet projects to huge positions.
-    first = static_cast<int>(std::clamp(std::ceil(lo), 0.0f, float(S)));
-    last = static_cast<int>(std::clamp(std::floor(hi), -1.0f, float(S - 1)));
-  }
-
-  bool intersect_lanes(const Setup& s, const PolygonHit& id, int base) {
+  bool intersect_lanes(const PolygonSetup& s, const PolygonHit& id, int base) {
     if constexpr (kStats) stats_.ray_isopolygon_tests += W;
     const F dx = simd::load(packet_.dx + base, F{}), dy = simd::load(packet_.dy + base, F{}),
             dz = simd::load(packet_.dz + base, F{});
@@ -206,7 +271,8 @@ class IsopolygonIntersector {
     const auto wins = simd::either(simd::both(ahead, t < tmax), tie_won);
     if (!simd::any(wins)) return false;
     const auto first_hit = simd::both(wins, tmax == F(std::numeric_limits<float>::infinity()));
-    packet_.rays_without_hit -= std::popcount(simd::bits(first_hit));
+    const int first_hits = std::popcount(simd::bits(first_hit));
+    packet_.rays_without_hit -= first_hits;
     simd::store_where(wins, t, packet_.tmax + base);
     simd::store_where(wins, id.key, packet_.key + base);
     simd::store_where(wins, id.tet, packet_.tet + base);
@@ -214,6 +280,8 @@ class IsopolygonIntersector {
     simd::store_where(wins, F(s.normal.x), packet_.nx + base);
     simd::store_where(wins, F(s.normal.y), packet_.ny + base);
     simd::store_where(wins, F(s.normal.z), packet_.nz + base);
+    if ((packet_.batch_missing[base / W] -= first_hits) == 0)
+      packet_.batch_far[base / W] = simd::max_of(simd::load(packet_.tmax + base, F{}));
     return true;
   }
 
@@ -224,7 +292,7 @@ class IsopolygonIntersector {
   // the ray, and is clamped there (an exact bound for a ray through the polygon). A ray exactly
   // parallel to the plane (the eye in it) sees the polygon edge-on, with no area: every edge
   // value is zero there, so it is rejected here with a negative distance.
-  F distance(const Setup& s, F dx, F dy, F dz) const {
+  F distance(const PolygonSetup& s, F dx, F dy, F dz) const {
     const F den = edge_value(s.normal, dx, dy, dz);
     const F t = F(s.plane) / den;
     F near = edge_value(s.corner(0), dx, dy, dz), far = near;
@@ -234,7 +302,8 @@ class IsopolygonIntersector {
       far = simd::vmax(far, v);
     }
     const F clamped = simd::select(t >= near, simd::select(t <= far, t, far), near);
-    return simd::select(den != F(0.0f), clamped, F(-1.0f));
+    const F floored = simd::select(clamped < F(s.near_floor), F(s.near_floor), clamped);
+    return simd::select(den != F(0.0f), floored, F(-1.0f));
   }
 
   Packet& packet_;

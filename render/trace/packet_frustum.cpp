@@ -35,11 +35,15 @@ PacketFrustum frustum_from_slopes(Vec3d f, Vec3d r, Vec3d u, double left, double
     frustum.slack[k] = static_cast<float>(error * l1_norm(normals[k]));
   }
   frustum.forward = static_cast<Vec3f>(f);
-  frustum.forward_slack = static_cast<float>(error * l1_norm(f));
+  frustum.forward_slack = depth_rounding(f, magnitude);
   return frustum;
 }
 
 }  // namespace
+
+float depth_rounding(Vec3d forward, float magnitude) {
+  return static_cast<float>(kCoordinateError * magnitude * l1_norm(forward));
+}
 
 PacketFrustum make_packet_frustum(const Camera& camera, const CameraFrame& frame, int x0, int y0,
                                   int x1, int y1, float magnitude) {

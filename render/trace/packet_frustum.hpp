@@ -61,6 +61,10 @@ struct PacketFrustum {
   static constexpr float kDepthGrowth = 1.0f + 0x1p-16f;  // far above a distance's rounding
 };
 
+// A bound of the rounding of a view depth, dot(p - eye, forward), computed from eye-relative
+// floats whose coordinates `magnitude` bounds (make_packet_frustum's slack).
+float depth_rounding(Vec3d forward, float magnitude);
+
 // The frustum of the packet whose rays run through pixel columns [x0, x1] and rows [y0, y1]; the
 // tests take points relative to the packet's float eye. `magnitude` bounds the absolute value of
 // every coordinate the tests will see (vertices and eye, relative to the volume's origin): the

@@ -1,13 +1,15 @@
 // Packet traversal of the implicit BVH (Wald et al. 2007, §5.2), written once and templated on the
-// packet size and on what a leaf does (docs/architecture.md §7), in the order Wald et al. 2007
-// give:
+// packet (a RayPacket of any size, or a Tile: a frustum without rays) and on what a leaf does
+// (docs/architecture.md §7), in the order Wald et al. 2007 give:
 //   I   implicit culling: a node whose scalar range straddles no isovalue is skipped, and a node
 //       with one active child descends into it without any geometric test;
 //   II  speculative first-active descent: if the first active ray hits the node, descend;
 //   III else an interval-arithmetic frustum test rejects nodes the whole packet misses;
 //   IV  else rays are tested in order until one hits; those before it become inactive for the
 //       subtree (first-active tracking).
-// Leaves get the same geometric test, then the leaf operation runs from the first active ray.
+// Leaves get the same geometric test, then the leaf operation runs from the first active ray. A
+// tile has no rays: its geometric test is its frustum's (step III alone, exact for the four
+// planes), and every node it reaches is active from ray 0.
 // A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test,
 // and gives the distance from which each ray's box test starts (a transparent layer's rays
 // start at the previous layer, layer_filter.hpp); the default one discards none, starts at the
@@ -34,13 +36,9 @@ namespace tetray::render {
 // 1 + 2 gamma(3), so rounding never lets a ray miss a box around a surface it hits.
 inline constexpr float kRobustFar = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
-template <int S, bool kStats, typename NodeFilter = NoNodeFilter, typename Lod = NoLod>
+template <typename Packet, bool kStats, typename NodeFilter = NoNodeFilter, typename Lod = NoLod>
 class PacketTraversal {
  public:
-  using Packet = RayPacket<S>;
-  using F = typename Packet::Lanes::F;
-  static constexpr int W = Packet::kLaneWidth;
-
   PacketTraversal(const Bvh& bvh, const IsoSet& isos, Packet& packet, TraceStats& stats,
                   NodeFilter filter = {}, Lod lod = {})
       : bvh_(bvh), isos_(isos), packet_(packet), stats_(stats), filter_(filter), lod_(lod) {}
@@ -78,6 +76,7 @@ class PacketTraversal {
 
  private:
   static constexpr int kStackSize = 128;  // the builders bound the depth well below this
+  static constexpr bool kTile = Packet::kRays == 0;
 
   // Interval arithmetic over the packet's inverse directions: every ray's entry distance is at
   // least `enter` and its exit at most `leave`; rounding is monotonic, so the bounds hold for
@@ -144,16 +143,36 @@ class PacketTraversal {
   bool near_child_is_first(std::uint32_t first) const {
     const Bounds4& a = bvh_.nodes[first].bounds;
     const Bounds4& b = bvh_.nodes[first + 1].bounds;
-    const int mid = Packet::kRays / 2;
-    const float d[3] = {packet_.dx[mid], packet_.dy[mid], packet_.dz[mid]};
+    const Vec3f d = mean_direction();
     float along = 0;
     for (int k = 0; k < 3; ++k) along += d[k] * ((b.lo[k] + b.hi[k]) - (a.lo[k] + a.hi[k]));
     return along >= 0;
   }
 
-  // Index of the first ray at or after `first_active` that hits the node's box, or -1.
+  // The packet's middle ray, or the direction through a tile's center.
+  Vec3f mean_direction() const {
+    if constexpr (kTile) {
+      return packet_.center_direction;
+    } else {
+      const int mid = Packet::kRays / 2;
+      return {packet_.dx[mid], packet_.dy[mid], packet_.dz[mid]};
+    }
+  }
+
+  // Index of the first ray at or after `first_active` that hits the node's box, or -1 (for a
+  // tile: 0 where its frustum meets the box).
   int geometric_test(const BvhNode& n, int first_active) {
     if constexpr (kStats) ++stats_.packet_box_tests;
+    if constexpr (kTile) {
+      return packet_.misses(n.bounds) ? -1 : 0;
+    } else {
+      return first_ray_hit(n, first_active);
+    }
+  }
+
+  int first_ray_hit(const BvhNode& n, int first_active) {
+    using F = typename Packet::Lanes::F;
+    constexpr int W = Packet::kLaneWidth;
     if (ray_hits<float>(n.bounds, first_active)) return first_active;
     if (frustum_misses(n.bounds)) return -1;
     for (int base = (first_active + 1) / W * W; base < Packet::kRays; base += W) {

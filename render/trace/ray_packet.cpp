@@ -59,12 +59,24 @@ void prepare_rays(RayPacket<S>& packet) {
     simd::min_max(inv[a], n, packet.inv_lo[a], packet.inv_hi[a]);
     packet.inv_straddles[a] = packet.inv_lo[a] < 0 && packet.inv_hi[a] > 0;
   }
+  reset_batch_bounds(packet);
+}
+
+template <int S>
+void reset_batch_bounds(RayPacket<S>& packet) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  constexpr int w = RayPacket<S>::kLaneWidth;
+  for (int b = 0; b < RayPacket<S>::kBatches; ++b) {
+    const float* tmax = packet.tmax + b * w;
+    packet.batch_missing[b] = static_cast<std::int32_t>(std::count(tmax, tmax + w, kInf));
+    packet.batch_far[b] = packet.batch_missing[b] > 0 ? kInf : *std::max_element(tmax, tmax + w);
+  }
 }
 
 template <int S>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
                   const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
-                  int x0, int y0) {
+                  float magnitude, int x0, int y0) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   packet.eye = static_cast<Vec3f>(frame.eye - origin);
   const int x1 = std::min(x0 + S, camera.width) - 1, y1 = std::min(y0 + S, camera.height) - 1;
@@ -74,15 +86,23 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
   prepare_rays(packet);
   packet.tmax_bound = kInf;
   packet.rays_without_hit = (x1 - x0 + 1) * (y1 - y0 + 1);
-  packet.forward = static_cast<Vec3f>(frame.forward);
-  packet.up = static_cast<Vec3f>(frame.up);
+  packet.projection = row_projection(camera, frame, x0, y0, magnitude);
+}
+
+RowProjection row_projection(const Camera& camera, const CameraFrame& frame, int x0, int y0,
+                             float magnitude) {
+  RowProjection p;
+  p.depth_slack = depth_rounding(frame.forward, magnitude);
+  p.forward = static_cast<Vec3f>(frame.forward);
+  p.up = static_cast<Vec3f>(frame.up);
   // Row j's center has ndc_y = (1 - 2 (j + 0.5) / H) scale_y.
-  packet.row_scale = static_cast<float>(camera.height / (2.0 * frame.scale_y));
-  packet.row_center = static_cast<float>(camera.height / 2.0 - 0.5 - y0);
+  p.row_scale = static_cast<float>(camera.height / (2.0 * frame.scale_y));
+  p.row_center = static_cast<float>(camera.height / 2.0 - 0.5 - y0);
   // Column i's center has ndc_x = (2 (i + 0.5) / W - 1) scale_x.
-  packet.right = static_cast<Vec3f>(frame.right);
-  packet.column_scale = static_cast<float>(camera.width / (2.0 * frame.scale_x));
-  packet.column_center = static_cast<float>(camera.width / 2.0 - 0.5 - x0);
+  p.right = static_cast<Vec3f>(frame.right);
+  p.column_scale = static_cast<float>(camera.width / (2.0 * frame.scale_x));
+  p.column_center = static_cast<float>(camera.width / 2.0 - 0.5 - x0);
+  return p;
 }
 
 template <int S>
@@ -93,15 +113,21 @@ void update_tmax_bound(RayPacket<S>& packet) {
 }
 
 template void setup_packet<1>(RayPacket<1>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
+                              const PixelDirections&, Vec3d, const PacketFrustum&, float, int, int);
 template void setup_packet<8>(RayPacket<8>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
+                              const PixelDirections&, Vec3d, const PacketFrustum&, float, int, int);
 template void setup_packet<16>(RayPacket<16>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
+                               const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
+                               int);
 template void setup_packet<32>(RayPacket<32>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, const PacketFrustum&, int, int);
+                               const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
+                               int);
 template void prepare_rays<1>(RayPacket<1>&);
 template void prepare_rays<16>(RayPacket<16>&);
+template void reset_batch_bounds<1>(RayPacket<1>&);
+template void reset_batch_bounds<8>(RayPacket<8>&);
+template void reset_batch_bounds<16>(RayPacket<16>&);
+template void reset_batch_bounds<32>(RayPacket<32>&);
 template void update_tmax_bound<1>(RayPacket<1>&);
 template void update_tmax_bound<8>(RayPacket<8>&);
 template void update_tmax_bound<16>(RayPacket<16>&);

@@ -15,6 +15,16 @@
 
 namespace tetray::render {
 
+// Image rows and columns of points relative to the eye, in the pixel units of a packet or of a
+// whole tile: row = row_center - row_scale * dot(p, up) / dot(p, forward), column = column_center
+// + column_scale * dot(p, right) / dot(p, forward).
+struct RowProjection {
+  Vec3f forward, up, right;
+  float row_center = 0, row_scale = 0;
+  float column_center = 0, column_scale = 0;
+  float depth_slack = 0;  // depth_rounding of the frame
+};
+
 template <int S>
 struct alignas(64) RayPacket {
   static constexpr int kRays = S * S;
@@ -28,6 +38,12 @@ struct alignas(64) RayPacket {
   alignas(64) std::int32_t tet[kRays];                // volume.tets index of that hit, -1: none
   alignas(64) std::int32_t iso[kRays];                // isovalue index of that hit
   alignas(64) float nx[kRays], ny[kRays], nz[kRays];  // unnormalized normal at that hit
+  // Per lane batch of rays (kBatches of them): at least the tmax of each of its rays, for the
+  // occlusion culling of polygons batch by batch (isopolygon_intersect.hpp), and how many of its
+  // rays still have no hit (while any has none, the bound stays infinite).
+  static constexpr int kBatches = kRays / kLaneWidth;
+  alignas(64) float batch_far[kBatches];
+  std::int32_t batch_missing[kBatches];
 
   Vec3f eye;                   // relative to the volume's origin
   PacketFrustum frustum;       // of the rays in the image
@@ -36,12 +52,7 @@ struct alignas(64) RayPacket {
   float tmax_bound = 0;        // >= tmax of every ray (packet occlusion culling)
   int rays_without_hit = 0;    // rays in the image still without a hit: while any is left,
                                // tmax_bound stays infinite and needs no update
-  // Image rows and columns of points (relative to the eye) in packet units:
-  // row = row_center - row_scale * dot(p, up) / dot(p, forward),
-  // column = column_center + column_scale * dot(p, right) / dot(p, forward).
-  Vec3f forward, up, right;
-  float row_center = 0, row_scale = 0;
-  float column_center = 0, column_scale = 0;
+  RowProjection projection;    // in packet units: the packet's top-left pixel is row 0, column 0
 };
 
 // The frustum of the tile of S x S pixels whose top-left pixel is (x0, y0) (its part in the
@@ -54,16 +65,25 @@ PacketFrustum tile_frustum(const Camera& camera, const CameraFrame& frame, float
                              std::min(y0 + S, camera.height) - 1, magnitude);
 }
 
-// Fills `packet` with the rays of that tile, whose frustum is given.
+// Fills `packet` with the rays of that tile, whose frustum is given (`magnitude` as for it).
 template <int S>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
                   const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
-                  int x0, int y0);
+                  float magnitude, int x0, int y0);
+
+// The image rows and columns of points relative to the eye in the pixel units of the tile whose
+// top-left pixel is (x0, y0); `magnitude` as for make_packet_frustum.
+RowProjection row_projection(const Camera& camera, const CameraFrame& frame, int x0, int y0,
+                             float magnitude);
 
 // Completes a packet whose directions, tmax and eye are set (primary or shadow rays): inverse
 // directions, no hits yet, and the interval of the inverse directions.
 template <int S>
 void prepare_rays(RayPacket<S>& packet);
+
+// The batches' bounds of the packet's tmax as they are now (a packet's rays set anew).
+template <int S>
+void reset_batch_bounds(RayPacket<S>& packet);
 
 // The largest tmax of the packet's rays (computed once every ray in the image has a hit).
 template <int S>

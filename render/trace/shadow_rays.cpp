@@ -71,7 +71,8 @@ void trace_any_hit(const ShadowFrame& f, RayPacket<S>& packet, std::uint8_t* occ
   for (int r = 0; r < n; ++r) waiting += packet.tmax[r] > 0;
   if (waiting == 0) return;
   TraceStats stats;
-  PacketTraversal<S, false, NodeFilter> traversal(f.bvh, f.isos, packet, stats, NodeFilter(f.clip));
+  PacketTraversal<RayPacket<S>, false, NodeFilter> traversal(f.bvh, f.isos, packet, stats,
+                                                             NodeFilter(f.clip));
   IsopolygonIntersector<S, false, HitFilter> intersector(packet, stats, HitFilter(f.clip));
   traversal.run([&](const BvhNode& leaf, int first_active) {
     if (!intersect_leaf<S, false>(f.volume, f.isos, leaf, first_active, intersector, packet, stats))
@@ -93,9 +94,7 @@ void finish_shadow_packet(RayPacket<S>& packet, const PacketFrustum& frustum) {
   prepare_rays(packet);
   packet.tmax_bound = *std::max_element(packet.tmax, packet.tmax + RayPacket<S>::kRays);
   packet.rays_without_hit = 0;
-  packet.forward = {0, 0, 0};
-  packet.up = {0, 0, 0};
-  packet.right = {0, 0, 0};
+  packet.projection = {};
 }
 
 // The tile's rays from a point light at `light` (local) to its hit points; bit `bit` of

@@ -31,14 +31,17 @@ struct IsoSurface {
   float opacity = 1;  // below 1: transparent, drawn by trace_layers
 };
 
-// Rays traced together (Wald et al. 2007, §3): single rays, or square packets. Every size gives
-// bitwise the same image; larger packets share more of the traversal and of each isopolygon's
-// set-up.
-enum class PacketSize { single, p8x8, p16x16, p32x32 };
+// Rays traced together (Wald et al. 2007, §3): single rays, or square packets, each traversing
+// the BVH; or (tiled, the default) 128 x 128 tiles that traverse it once as a frustum and set up
+// their isopolygons a lane batch at a time for their 32 x 32 packets (tile_polygons.hpp). Every
+// choice gives bitwise the same image; larger packets share more of the traversal and of each
+// isopolygon's set-up, tiles the most.
+enum class PacketSize { single, p8x8, p16x16, p32x32, tiled };
 inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
-                                            PacketSize::p16x16, PacketSize::p32x32};
+                                            PacketSize::p16x16, PacketSize::p32x32,
+                                            PacketSize::tiled};
 
-// "1", "8x8", "16x16", "32x32".
+// "1", "8x8", "16x16", "32x32", "tiled".
 const char* to_string(PacketSize packet);
 
 // The counters of Wald et al. 2007, Table 4, per frame.
@@ -64,7 +67,7 @@ struct ColorBy {
 };
 
 struct TraceOptions {
-  PacketSize packet = PacketSize::p32x32;
+  PacketSize packet = PacketSize::tiled;
   bool collect_stats = false;  // off: the hot path pays nothing for counting
   ColorBy color_by{};
   float ambient = 0.15f;  // Lambert headlight: color * (ambient + (1 - ambient) |cos|)

@@ -31,7 +31,7 @@ std::vector<LodRow> measure_lod_study(int n, const render::Camera& camera, int t
   render::Bvh bvh;
   load_scene(scene, volume, bvh);
   const render::IsoSurface surface = bench_surface();
-  render::TraceOptions options;  // the default 32x32 packets
+  render::TraceOptions options;  // the default (level of detail traces its 32x32 packets)
   render::Framebuffer exact, image;
   const auto frame = [&](render::Framebuffer& into) {
     return time_ms([&] { render::trace_into(into, volume, bvh, camera, {&surface, 1}, options); });

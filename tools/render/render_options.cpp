@@ -111,7 +111,7 @@ void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) 
   app.add_option("--size", texts.size, "image size")->check(size_format())->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (default: every core)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--packet", texts.packet, "ray packet: 1, 8x8, 16x16 or 32x32")
+  app.add_option("--packet", texts.packet, "ray packet: 1, 8x8, 16x16, 32x32 or tiled")
       ->check(CLI::IsMember(packet_names()))
       ->capture_default_str();
   app.add_option("-o,--output", options.output, "output image (.exr or .png)")

@@ -1,0 +1,178 @@
+// What every packet of one frame shares (the Frame), and the writing of a packet's pixels into the
+// image: the parts of the frame driver (trace.cpp) that the tiled driver (tile_trace.cpp) uses
+// too.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "render/trace/clip_region.hpp"
+#include "render/trace/ray_packet.hpp"
+#include "render/trace/shade.hpp"
+#include "render/trace/trace.hpp"
+
+namespace tetray::render {
+
+// What the frustum tests need of the volume: the root's box relative to the eye (a packet whose
+// frustum misses it sees only background) and the largest absolute coordinate of the eye and of
+// the tets' vertices (make_packet_frustum).
+struct VolumeExtent {
+  Vec3f lo, hi;
+  float magnitude = 0;
+
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+};
+
+struct LayerSlots;  // trace.cpp: the layers of trace_layers
+
+struct Frame {
+  const TetVolume& volume;
+  const Bvh& bvh;
+  const Camera& camera;
+  CameraFrame view;
+  PixelDirections directions;
+  IsoSet isos;
+  VolumeExtent extent;
+  int surface_of_sorted[kMaxIsovalues];
+  ShadeContext shade;
+  bool smooth = false;  // options.smooth with gradients to interpolate
+  LocalClip clip;       // options.clip in local coordinates (used when it is not empty)
+  LocalLights lights;   // used unless options.lights is a headlight alone
+  bool lit = false;
+  std::vector<Framebuffer>* shadow_terms = nullptr;  // one per shadowing light, or null
+  LevelOfDetail lod{};                               // used when enabled
+  float footprint_per_distance = 0;                  // a pixel's width at unit distance
+  LayerSlots* layers = nullptr;  // trace_layers' output; null: trace_into's image
+};
+
+// One packet row's pixels, composed in the cache and then written to the frame in one go.
+template <int S>
+struct PixelRow {
+  alignas(64) float rgba[4 * S];
+  alignas(64) float depth[S];
+  alignas(64) std::uint32_t hit[S];
+};
+
+// Copies `count` elements to the frame, with streaming stores where the destination lines up
+// with them: they skip reading each cache line before overwriting it, which made up much of
+// writing the frame (a fifth of the trace when written pixel by pixel).
+template <typename T>
+void write_row(T* to, const T* from, int count) {
+  const std::size_t bytes = sizeof(T) * static_cast<std::size_t>(count);
+  if (reinterpret_cast<std::uintptr_t>(to) % simd::kStreamBytes == 0 &&
+      bytes % simd::kStreamBytes == 0) {
+    simd::stream_copy(to, from, bytes);
+  } else {
+    std::copy_n(from, count, to);
+  }
+}
+
+// Writes the packet's rows that lie in the image, each composed in the cache first by
+// compose(row, columns, out).
+template <int S, typename Compose>
+void write_rows(const Frame& f, int x0, int y0, Framebuffer& image, Compose&& compose) {
+  const int columns = std::min(S, f.camera.width - x0);
+  PixelRow<S> out;
+  for (int row = 0; row < S && y0 + row < f.camera.height; ++row) {
+    compose(row, columns, out);
+    const std::size_t p0 = image.index(x0, y0 + row);
+    write_row(&image.rgba[4 * p0], out.rgba, 4 * columns);
+    write_row(&image.depth[p0], out.depth, columns);
+    write_row(&image.hit[p0], out.hit, columns);
+  }
+  simd::stream_fence();
+}
+
+// Several lights: the light factor of every ray, and each shadowing light's part of the color
+// into its own image (shadow_terms), with the pixel's depth and key.
+template <int S>
+void light_packet(const Frame& f, const RayPacket<S>& packet, const RayHits& hits, int x0, int y0,
+                  const float* depth, float* light) {
+  constexpr int n = RayPacket<S>::kRays;
+  alignas(64) float factor[kMaxLights][n];
+  float* factors[kMaxLights];
+  for (int k = 0; k < kMaxLights; ++k) factors[k] = factor[k];
+  light_terms(f.shade, f.lights, hits, packet.eye, light, factors);
+  if (f.shadow_terms == nullptr) return;
+  const int columns = std::min(S, f.camera.width - x0);
+  for (std::size_t j = 0; j < f.shadow_terms->size(); ++j) {
+    Framebuffer& term = (*f.shadow_terms)[j];
+    for (int row = 0; row < S && y0 + row < f.camera.height; ++row)
+      for (int c = 0; c < columns; ++c) {
+        const int r = row * S + c;
+        const std::size_t p = term.index(x0 + c, y0 + row);
+        float* rgba = &term.rgba[4 * p];
+        if (packet.tet[r] < 0) {
+          std::fill_n(rgba, 4, 0.0f);
+          term.depth[p] = std::numeric_limits<float>::infinity();
+          term.hit[p] = kNoHit;
+          continue;
+        }
+        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
+                    packet.tet[r], packet.iso[r], factor[j][r], rgba);
+        term.depth[p] = depth[r];
+        term.hit[p] = packet.key[r];
+      }
+  }
+}
+
+// Writes the packet's pixels: the background, or the shaded hit.
+template <int S, bool kStats>
+void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
+                  TraceStats& stats) {
+  constexpr int n = RayPacket<S>::kRays;
+  alignas(64) float light[n], depth[n];
+  const RayHits hits{packet.dx, packet.dy, packet.dz,   packet.nx,
+                     packet.ny, packet.nz, packet.tmax, n};
+  if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
+  light_and_depth(f.shade, hits, light, depth);
+  if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
+  write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    const int r0 = row * S;
+    const std::int32_t* tet = packet.tet + r0;
+    for (int c = 0; c < columns; ++c) {
+      out.depth[c] = tet[c] >= 0 ? depth[r0 + c] : kInf;
+      out.hit[c] = tet[c] >= 0 ? packet.key[r0 + c] : kNoHit;
+    }
+    for (int c = 0; c < columns; ++c) {
+      const int r = r0 + c;
+      float* rgba = &out.rgba[4 * c];
+      if (tet[c] < 0) {
+        std::fill_n(rgba, 4, 0.0f);
+        continue;
+      }
+      if constexpr (kStats) ++stats.hits;
+      shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r], tet[c],
+                  packet.iso[r], light[r], rgba);
+    }
+    if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
+  });
+}
+
+// A packet whose frustum misses the whole volume: background, without setting up its rays.
+template <int S, bool kStats>
+void write_background(const Frame& f, int x0, int y0, Framebuffer& image, TraceStats& stats) {
+  const auto background = [&](int, int columns, PixelRow<S>& out) {
+    std::fill_n(out.rgba, 4 * columns, 0.0f);
+    std::fill_n(out.depth, columns, std::numeric_limits<float>::infinity());
+    std::fill_n(out.hit, columns, kNoHit);
+  };
+  write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
+    background(row, columns, out);
+    if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
+  });
+  if (f.lit && f.shadow_terms) {
+    for (Framebuffer& term : *f.shadow_terms) write_rows<S>(f, x0, y0, term, background);
+  }
+}
+
+template <bool kClip>
+using ClipNodes = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
+template <bool kClip>
+using ClipHits = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
+
+}  // namespace tetray::render

@@ -1,0 +1,139 @@
+#include "render/trace/tile_trace.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+
+#include "render/trace/isopolygon_intersect.hpp"
+#include "render/trace/packet_traversal.hpp"
+#include "render/trace/tet_straddle.hpp"
+#include "render/trace/tile_polygons.hpp"
+
+namespace tetray::render {
+namespace {
+
+constexpr int kPackets = kTileSize / kTilePacket;  // packets a side of a tile
+constexpr int W = simd::kWidth;
+
+// What a thread keeps from tile to tile of a frame: the bins grow to the largest tile's.
+struct TileScratch {
+  TilePolygons polygons;
+  std::uint32_t pending[2 * W];  // straddling tets not yet set up
+  int pending_count = 0;
+};
+
+// Sets up the polygons of `count` tets of every isovalue.
+template <bool kStats>
+void set_up_tets(const Frame& f, const Tile& tile, const std::uint32_t* tets, int count,
+                 TilePolygons& polygons, TraceStats& stats) {
+  const TetBatch batch = gather_tets(f.volume, tets, count);
+  const simd::Mask live = batch.valid & !outside_tile(batch, tile);
+  if (!xsimd::any(live)) return;
+  for (int k = 0; k < f.isos.count; ++k) {
+    const int extracted =
+        set_up_polygons(f.volume, batch, live, f.isos.values[k], k, tile, polygons);
+    if constexpr (kStats) stats.isopolygon_extractions += static_cast<std::uint64_t>(extracted);
+  }
+}
+
+// The tile's traversal: the straddling tets of every leaf it reaches (Wald et al. 2007, §5.2 V)
+// are set up a lane batch at a time, while their vertices are still in the cache from the range
+// test.
+template <bool kStats, bool kClip>
+void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& stats) {
+  PacketTraversal<Tile, kStats, ClipNodes<kClip>> traversal(f.bvh, f.isos, tile, stats,
+                                                            ClipNodes<kClip>(f.clip));
+  scratch.pending_count = 0;
+  traversal.run([&](const BvhNode& leaf, int) {
+    const std::uint32_t end = leaf.first + leaf.count;
+    for (std::uint32_t batch = leaf.first; batch < end; batch += W) {
+      const int count = static_cast<int>(std::min<std::uint32_t>(W, end - batch));
+      if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
+      for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
+           straddling &= straddling - 1)
+        scratch.pending[scratch.pending_count++] =
+            batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
+      if (scratch.pending_count < W) continue;
+      set_up_tets<kStats>(f, tile, scratch.pending, W, scratch.polygons, stats);
+      scratch.pending_count -= W;
+      std::copy_n(scratch.pending + W, scratch.pending_count, scratch.pending);
+    }
+  });
+  if (scratch.pending_count > 0)
+    set_up_tets<kStats>(f, tile, scratch.pending, scratch.pending_count, scratch.polygons, stats);
+}
+
+// The packet at (x0, y0) of the image tests its rays against its bin and writes its pixels.
+template <bool kStats, bool kClip>
+void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, int y0, int tile_row,
+                  int tile_column, Framebuffer& image, TraceStats& stats) {
+  constexpr int S = kTilePacket;
+  if (bin.empty()) return write_background<S, kStats>(f, x0, y0, image, stats);
+  RayPacket<S> packet;
+  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
+  setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, f.extent.magnitude,
+               x0, y0);
+  IsopolygonIntersector<S, kStats, ClipHits<kClip>> intersector(packet, stats,
+                                                                ClipHits<kClip>(f.clip));
+  for (const TilePolygon& p : bin) {
+    const int first_row = std::max<int>(p.first_row - tile_row, 0);
+    const int last_row = std::min<int>(p.last_row - tile_row, S - 1);
+    intersector.intersect_rays(p.setup, p.id, first_row * S, (last_row + 1) * S,
+                               std::max<int>(p.first_column - tile_column, 0),
+                               std::min<int>(p.last_column - tile_column, S - 1));
+  }
+  write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
+}
+
+template <bool kStats, bool kClip>
+void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch& scratch,
+                TraceStats& stats) {
+  Tile tile = make_tile(f.camera, f.view, f.volume.origin, f.extent.magnitude, x0, y0, kTileSize);
+  scratch.polygons.reset(kPackets, kPackets, kTilePacket);
+  const std::uint64_t extracted_before = stats.isopolygon_extractions;
+  if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi))
+    collect_polygons<kStats, kClip>(f, tile, scratch, stats);
+  if constexpr (kStats)  // polygons beside the tile's pixels
+    stats.frustum_culled_isopolygons +=
+        stats.isopolygon_extractions - extracted_before - scratch.polygons.polygons_added();
+  for (int py = 0; py <= tile.last_row; py += kTilePacket)
+    for (int px = 0; px <= tile.last_column; px += kTilePacket)
+      trace_packet<kStats, kClip>(f, scratch.polygons.bin(px / kTilePacket, py / kTilePacket),
+                                  x0 + px, y0 + py, py, px, image, stats);
+}
+
+template <bool kStats, bool kClip>
+void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
+  const int across = (f.camera.width + kTileSize - 1) / kTileSize;
+  const int tiles = across * ((f.camera.height + kTileSize - 1) / kTileSize);
+  tbb::enumerable_thread_specific<TraceStats> stats;
+  tbb::parallel_for(
+      0, tiles,
+      [&](int t) {
+        // Per thread and kept across frames: a frame of a time loop finds its bins grown.
+        thread_local TileScratch scratch;
+        trace_tile<kStats, kClip>(f, t % across * kTileSize, t / across * kTileSize, image, scratch,
+                                  stats.local());
+      },
+      tbb::simple_partitioner());
+  if (total) {
+    for (const TraceStats& s : stats) *total += s;
+  }
+}
+
+}  // namespace
+
+void trace_tiles(const Frame& f, Framebuffer& image, bool clipped, bool collect,
+                 TraceStats* stats) {
+  if (clipped) {
+    collect ? trace_tiles_with<true, true>(f, image, stats)
+            : trace_tiles_with<false, true>(f, image, nullptr);
+  } else {
+    collect ? trace_tiles_with<true, false>(f, image, stats)
+            : trace_tiles_with<false, false>(f, image, nullptr);
+  }
+}
+
+}  // namespace tetray::render
