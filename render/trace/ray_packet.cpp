@@ -41,6 +41,22 @@ void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, 
   }
 }
 
+namespace {
+
+// No hits yet, and the batches' bounds.
+template <int S>
+void clear_hits(RayPacket<S>& packet) {
+  constexpr int n = RayPacket<S>::kRays;
+  std::fill_n(packet.key, n, kNoHit);
+  std::fill_n(packet.tet, n, -1);
+  std::fill_n(packet.iso, n, -1);
+  // Shading reads every ray's normal at once, a ray without a hit included.
+  for (float* normal : {packet.nx, packet.ny, packet.nz}) std::fill_n(normal, n, 0.0f);
+  reset_batch_bounds(packet);
+}
+
+}  // namespace
+
 template <int S>
 void prepare_rays(RayPacket<S>& packet) {
   constexpr int n = RayPacket<S>::kRays;
@@ -49,17 +65,12 @@ void prepare_rays(RayPacket<S>& packet) {
     packet.iy[r] = 1.0f / packet.dy[r];
     packet.iz[r] = 1.0f / packet.dz[r];
   }
-  std::fill_n(packet.key, n, kNoHit);
-  std::fill_n(packet.tet, n, -1);
-  std::fill_n(packet.iso, n, -1);
-  // Shading reads every ray's normal at once, a ray without a hit included.
-  for (float* normal : {packet.nx, packet.ny, packet.nz}) std::fill_n(normal, n, 0.0f);
   const float* inv[3] = {packet.ix, packet.iy, packet.iz};
   for (int a = 0; a < 3; ++a) {
     simd::min_max(inv[a], n, packet.inv_lo[a], packet.inv_hi[a]);
     packet.inv_straddles[a] = packet.inv_lo[a] < 0 && packet.inv_hi[a] > 0;
   }
-  reset_batch_bounds(packet);
+  clear_hits(packet);
 }
 
 template <int S>
@@ -73,7 +84,7 @@ void reset_batch_bounds(RayPacket<S>& packet) {
   }
 }
 
-template <int S>
+template <int S, bool kTraverses>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
                   const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
                   float magnitude, int x0, int y0) {
@@ -83,7 +94,11 @@ void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame&
   packet.frustum = frustum;
   for (int row = 0; row < S; ++row)
     setup_row(packet, directions, x0, std::min(y0 + row, y1), row, y0 + row <= y1, x1 - x0 + 1);
-  prepare_rays(packet);
+  if constexpr (kTraverses) {
+    prepare_rays(packet);
+  } else {
+    clear_hits(packet);
+  }
   packet.tmax_bound = kInf;
   packet.rays_without_hit = (x1 - x0 + 1) * (y1 - y0 + 1);
   packet.projection = row_projection(camera, frame, x0, y0, magnitude);
@@ -112,16 +127,21 @@ void update_tmax_bound(RayPacket<S>& packet) {
   simd::min_max(packet.tmax, RayPacket<S>::kRays, lowest, packet.tmax_bound);
 }
 
-template void setup_packet<1>(RayPacket<1>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, const PacketFrustum&, float, int, int);
-template void setup_packet<8>(RayPacket<8>&, const Camera&, const CameraFrame&,
-                              const PixelDirections&, Vec3d, const PacketFrustum&, float, int, int);
-template void setup_packet<16>(RayPacket<16>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
-                               int);
-template void setup_packet<32>(RayPacket<32>&, const Camera&, const CameraFrame&,
-                               const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
-                               int);
+template void setup_packet<1, true>(RayPacket<1>&, const Camera&, const CameraFrame&,
+                                    const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
+                                    int);
+template void setup_packet<8, true>(RayPacket<8>&, const Camera&, const CameraFrame&,
+                                    const PixelDirections&, Vec3d, const PacketFrustum&, float, int,
+                                    int);
+template void setup_packet<16, true>(RayPacket<16>&, const Camera&, const CameraFrame&,
+                                     const PixelDirections&, Vec3d, const PacketFrustum&, float,
+                                     int, int);
+template void setup_packet<32, true>(RayPacket<32>&, const Camera&, const CameraFrame&,
+                                     const PixelDirections&, Vec3d, const PacketFrustum&, float,
+                                     int, int);
+template void setup_packet<32, false>(RayPacket<32>&, const Camera&, const CameraFrame&,
+                                      const PixelDirections&, Vec3d, const PacketFrustum&, float,
+                                      int, int);
 template void prepare_rays<1>(RayPacket<1>&);
 template void prepare_rays<16>(RayPacket<16>&);
 template void reset_batch_bounds<1>(RayPacket<1>&);

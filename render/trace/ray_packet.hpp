@@ -65,8 +65,10 @@ PacketFrustum tile_frustum(const Camera& camera, const CameraFrame& frame, float
                              std::min(y0 + S, camera.height) - 1, magnitude);
 }
 
-// Fills `packet` with the rays of that tile, whose frustum is given (`magnitude` as for it).
-template <int S>
+// Fills `packet` with the rays of that tile, whose frustum is given (`magnitude` as for it);
+// the inverse directions and their interval, which only the traversal's box tests read, are left
+// out for a packet that will not traverse (a tile's, tile_trace.cpp).
+template <int S, bool kTraverses = true>
 void setup_packet(RayPacket<S>& packet, const Camera& camera, const CameraFrame& frame,
                   const PixelDirections& directions, Vec3d origin, const PacketFrustum& frustum,
                   float magnitude, int x0, int y0);

@@ -73,8 +73,8 @@ void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, i
   if (bin.empty()) return write_background<S, kStats>(f, x0, y0, image, stats);
   RayPacket<S> packet;
   const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
-  setup_packet(packet, f.camera, f.view, f.directions, f.volume.origin, frustum, f.extent.magnitude,
-               x0, y0);
+  setup_packet<S, false>(packet, f.camera, f.view, f.directions, f.volume.origin, frustum,
+                         f.extent.magnitude, x0, y0);
   IsopolygonIntersector<S, kStats, ClipHits<kClip>> intersector(packet, stats,
                                                                 ClipHits<kClip>(f.clip));
   for (const TilePolygon& p : bin) {

@@ -1,8 +1,9 @@
 // tetray-isa-bench: the frame and refit time of each instruction-set variant of a dispatch build
 // on the gyroid-twist benchmark scene (docs/architecture.md §6, camera and isovalue of
-// tetray-bench). The variants take turns within each round, so a shared machine's load changes
-// disturb all of them alike; each figure is the best over the rounds. A native or portable
-// build times its one variant, for comparison with a dispatch build's.
+// tetray-bench), in tiles and in 32x32 and 16x16 packets. The variants take turns within each
+// round, so a shared machine's load changes disturb all of them alike; each figure is the best over
+// the rounds. A native or portable build times its one variant, for comparison with a dispatch
+// build's.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -21,6 +22,7 @@ namespace {
 
 struct Figures {
   std::string name;
+  double frame_tiled_ms = std::numeric_limits<double>::infinity();
   double frame_32_ms = std::numeric_limits<double>::infinity();
   double frame_16_ms = std::numeric_limits<double>::infinity();
   double refit_ms = std::numeric_limits<double>::infinity();
@@ -33,19 +35,21 @@ void keep_best(double& best, Work&& work) {
   best = std::min(best, watch.ms());
 }
 
-// One round of the active variant: a frame per packet size and a refit of the geometry.
+// One round of the active variant: a frame in tiles and per packet size, and a refit of the
+// geometry.
 void time_round(render::TetVolume& volume, render::Bvh& bvh, const render::Camera& camera,
                 render::Framebuffer& image, Figures& figures) {
   const render::IsoSurface surface = bench::bench_surface();
-  render::TraceOptions options;
-  options.packet = render::PacketSize::p32x32;
-  keep_best(figures.frame_32_ms, [&] {
-    render::trace_into(image, volume, bvh, camera, {&surface, 1}, options);
-  });
-  options.packet = render::PacketSize::p16x16;
-  keep_best(figures.frame_16_ms, [&] {
-    render::trace_into(image, volume, bvh, camera, {&surface, 1}, options);
-  });
+  const auto time_frame = [&](render::PacketSize packet, double& best) {
+    render::TraceOptions options;
+    options.packet = packet;
+    keep_best(best, [&] {
+      render::trace_into(image, volume, bvh, camera, {&surface, 1}, options);
+    });
+  };
+  time_frame(render::PacketSize::tiled, figures.frame_tiled_ms);
+  time_frame(render::PacketSize::p32x32, figures.frame_32_ms);
+  time_frame(render::PacketSize::p16x16, figures.frame_16_ms);
   keep_best(figures.refit_ms, [&] { render::refit_bvh(volume, bvh, true); });
 }
 
@@ -83,10 +87,11 @@ int run(int n, int size_px, int rounds) {
   std::printf("tetray-isa-bench: gyroid-twist n = %d, %zu tets, %dx%d pixels, best of %d rounds\n",
               n, scene.mesh.tet_count(), size_px, size_px, rounds);
   std::printf("  kernels %s\n", choice.c_str());
-  std::printf("  %-8s %10s %10s %10s\n", "variant", "32x32 ms", "16x16 ms", "refit ms");
+  std::printf("  %-8s %10s %10s %10s %10s\n", "variant", "tiled ms", "32x32 ms", "16x16 ms",
+              "refit ms");
   for (const Figures& f : figures) {
-    std::printf("  %-8s %10.1f %10.1f %10.2f\n", f.name.c_str(), f.frame_32_ms, f.frame_16_ms,
-                f.refit_ms);
+    std::printf("  %-8s %10.1f %10.1f %10.1f %10.2f\n", f.name.c_str(), f.frame_tiled_ms,
+                f.frame_32_ms, f.frame_16_ms, f.refit_ms);
   }
   return 0;
 }
