@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/trace/clip_region.hpp"
+#include "render/trace/level_of_detail.hpp"
 #include "render/trace/ray_packet.hpp"
 #include "render/trace/shade.hpp"
 #include "render/trace/trace.hpp"
@@ -174,5 +175,15 @@ template <bool kClip>
 using ClipNodes = std::conditional_t<kClip, ClipNodeFilter, NoNodeFilter>;
 template <bool kClip>
 using ClipHits = std::conditional_t<kClip, ClipHitFilter, NoHitFilter>;
+
+// The frame's level of detail as the traversal's policy (none compiles to nothing).
+template <bool kLod>
+auto lod_policy(const Frame& f) {
+  if constexpr (kLod) {
+    return FootprintLod(f.lod, f.footprint_per_distance);
+  } else {
+    return NoLod{};
+  }
+}
 
 }  // namespace tetray::render

@@ -184,6 +184,26 @@ inline CoveredPixels project_rows(const simd::Float4 (&rel)[3], simd::Float4 dep
   return covered;
 }
 
+// Sets up one polygon for rays from `eye`: its corners relative to the eye, distance floor,
+// planes, and the pixels within [0, last_row] x [0, last_column] of `projection` its projection
+// covers (columns left whole unless `columns`). False when none of those rays can hit it: its
+// hull lies outside `frustum` (none: single rays), it covers no pixel center, or it has no area.
+inline bool set_up_polygon(const Isopolygon& poly, Vec3f eye, const PacketFrustum* frustum,
+                           const RowProjection& projection, int last_row, int last_column,
+                           bool columns, PolygonSetup& s, CoveredPixels& covered) {
+  simd::Float4 rel[3];
+  relative_corners(poly, eye, rel, s);
+  const simd::Float4 depth = view_depths(rel, projection);
+  s.near_floor = near_floor(simd::min_of(depth), projection.depth_slack);
+  covered = {0, last_row, 0, last_column};
+  if (frustum) {
+    if (frustum->misses_hull(rel)) return false;
+    covered = project_rows(rel, depth, projection, last_row, last_column, columns);
+  }
+  return covered.first_row <= covered.last_row && covered.first_column <= covered.last_column &&
+         polygon_planes(poly, eye, s);
+}
+
 // A hit filter (clip_region.hpp) may discard hits by their point; the default keeps all and
 // compiles to nothing.
 template <int S, bool kStats, typename HitFilter = NoHitFilter>
@@ -201,20 +221,13 @@ class IsopolygonIntersector {
   bool intersect(const Isopolygon& poly, const PolygonHit& id, int first_active) {
     if (poly.vertex_count < 3) return false;
     PolygonSetup s;
-    simd::Float4 rel[3];
-    relative_corners(poly, packet_.eye, rel, s);
-    const simd::Float4 depth = view_depths(rel, packet_.projection);
-    s.near_floor = near_floor(simd::min_of(depth), packet_.projection.depth_slack);
-    CoveredPixels covered{0, S - 1, 0, S - 1};
-    if constexpr (S > 1) {
-      if (packet_.frustum.misses_hull(rel)) return culled();
-      covered = project_rows(rel, depth, packet_.projection, S - 1, S - 1, S > W);
-    }
+    CoveredPixels covered;
+    if (!set_up_polygon(poly, packet_.eye, S > 1 ? &packet_.frustum : nullptr, packet_.projection,
+                        S - 1, S - 1, S > W, s, covered))
+      return culled();
     const int begin = std::max(first_active, covered.first_row * S);
     const int end = (covered.last_row + 1) * S;
-    if (begin >= end || covered.first_column > covered.last_column ||
-        !polygon_planes(poly, packet_.eye, s))
-      return culled();
+    if (begin >= end) return culled();
     return intersect_rays(s, id, begin, end, covered.first_column, covered.last_column);
   }
 

@@ -184,11 +184,15 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     p.last_row = static_cast<std::int16_t>(n[kLastRow][l]);
     p.first_column = static_cast<std::int16_t>(n[kFirstColumn][l]);
     p.last_column = static_cast<std::int16_t>(n[kLastColumn][l]);
-    for (int y = p.first_row / packet_size_; y <= p.last_row / packet_size_; ++y)
-      for (int x = p.first_column / packet_size_; x <= p.last_column / packet_size_; ++x)
-        bins_[static_cast<std::size_t>(y * across_ + x)].push_back(p);
-    ++added_;
+    add(p);
   }
+}
+
+void TilePolygons::add(const TilePolygon& p) {
+  for (int y = p.first_row / packet_size_; y <= p.last_row / packet_size_; ++y)
+    for (int x = p.first_column / packet_size_; x <= p.last_column / packet_size_; ++x)
+      bins_[static_cast<std::size_t>(y * across_ + x)].push_back(p);
+  ++added_;
 }
 
 TetBatch gather_tets(const TetVolume& volume, const std::uint32_t* tets, int count) {

@@ -66,6 +66,8 @@ class TilePolygons {
   // Adds the polygons of the lanes of `valid` to the bins of the packets they cover.
   void add(const simd::Floats (&floats)[kFloats], const simd::Ints (&ints)[kInts],
            simd::Mask valid);
+  // Adds one polygon so (a level-of-detail proxy's, set up on its own).
+  void add(const TilePolygon& polygon);
 
   const std::vector<TilePolygon>& bin(int packet_x, int packet_y) const {
     return bins_[static_cast<std::size_t>(packet_y * across_ + packet_x)];

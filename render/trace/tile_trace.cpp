@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <type_traits>
 
 #include "render/trace/isopolygon_intersect.hpp"
+#include "render/trace/level_of_detail.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/tet_straddle.hpp"
 #include "render/trace/tile_polygons.hpp"
@@ -17,7 +19,7 @@ namespace {
 constexpr int kPackets = kTileSize / kTilePacket;  // packets a side of a tile
 constexpr int W = simd::kWidth;
 
-// What a thread keeps from tile to tile of a frame: the bins grow to the largest tile's.
+// What a thread keeps from tile to tile: the bins, grown to the largest tile's.
 struct TileScratch {
   TilePolygons polygons;
   std::uint32_t pending[2 * W];  // straddling tets not yet set up
@@ -38,27 +40,76 @@ void set_up_tets(const Frame& f, const Tile& tile, const std::uint32_t* tets, in
   }
 }
 
-// The tile's traversal: the straddling tets of every leaf it reaches (Wald et al. 2007, §5.2 V)
-// are set up a lane batch at a time, while their vertices are still in the cache from the range
-// test.
-template <bool kStats, bool kClip>
+// Sets up the proxy isopolygons of a node the level of detail stopped at (intersect_proxy's, one
+// by one): a hit keeps the tet id of the node's first tet as its tie key, and that tet for
+// shading.
+template <bool kStats>
+void set_up_proxy(const Frame& f, const Tile& tile, const BvhNode& node, TilePolygons& polygons,
+                  TraceStats& stats) {
+  const NodePlane& plane = f.lod.planes[static_cast<std::size_t>(&node - f.bvh.nodes.data())];
+  const BvhNode* leaf = &node;
+  while (!leaf->is_leaf()) leaf = &f.bvh.nodes[leaf->first];
+  const auto tet = static_cast<std::int32_t>(leaf->first);
+  for (int k = 0; k < f.isos.count; ++k) {
+    const float iso = f.isos.values[k];
+    if (!(node.bounds.lo[3] < iso && iso <= node.bounds.hi[3])) continue;
+    Isopolygon proxies[2];
+    const int count = proxy_isopolygons(node.bounds, plane, iso, proxies);
+    for (int j = 0; j < count; ++j) {
+      if constexpr (kStats) ++stats.isopolygon_extractions;
+      TilePolygon p;
+      CoveredPixels covered;
+      if (!set_up_polygon(proxies[j], tile.eye, &tile.frustum, tile.projection, tile.last_row,
+                          tile.last_column, true, p.setup, covered))
+        continue;
+      p.id = {f.volume.tet_ids[static_cast<std::size_t>(tet)], tet, k};
+      p.first_row = static_cast<std::int16_t>(covered.first_row);
+      p.last_row = static_cast<std::int16_t>(covered.last_row);
+      p.first_column = static_cast<std::int16_t>(covered.first_column);
+      p.last_column = static_cast<std::int16_t>(covered.last_column);
+      polygons.add(p);
+    }
+  }
+}
+
+// Queues the leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V) and sets up each
+// full lane batch of them while their vertices are still in the cache from the range test.
+template <bool kStats>
+void set_up_leaf(const Frame& f, const Tile& tile, const BvhNode& leaf, TileScratch& scratch,
+                 TraceStats& stats) {
+  const std::uint32_t end = leaf.first + leaf.count;
+  for (std::uint32_t batch = leaf.first; batch < end; batch += W) {
+    const int count = static_cast<int>(std::min<std::uint32_t>(W, end - batch));
+    if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
+    for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
+         straddling &= straddling - 1)
+      scratch.pending[scratch.pending_count++] =
+          batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
+    if (scratch.pending_count < W) continue;
+    set_up_tets<kStats>(f, tile, scratch.pending, W, scratch.polygons, stats);
+    scratch.pending_count -= W;
+    std::copy_n(scratch.pending + W, scratch.pending_count, scratch.pending);
+  }
+}
+
+// The tile's traversal, with the scene's clip region and level of detail: a leaf gives its tets'
+// polygons, a node the level of detail stopped at (or a leaf narrow enough) its proxies.
+template <bool kStats, bool kClip, bool kLod>
 void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& stats) {
-  PacketTraversal<Tile, kStats, ClipNodes<kClip>> traversal(f.bvh, f.isos, tile, stats,
-                                                            ClipNodes<kClip>(f.clip));
+  const auto lod = lod_policy<kLod>(f);
+  PacketTraversal<Tile, kStats, ClipNodes<kClip>, decltype(lod)> traversal(
+      f.bvh, f.isos, tile, stats, ClipNodes<kClip>(f.clip), lod);
   scratch.pending_count = 0;
-  traversal.run([&](const BvhNode& leaf, int) {
-    const std::uint32_t end = leaf.first + leaf.count;
-    for (std::uint32_t batch = leaf.first; batch < end; batch += W) {
-      const int count = static_cast<int>(std::min<std::uint32_t>(W, end - batch));
-      if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
-      for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
-           straddling &= straddling - 1)
-        scratch.pending[scratch.pending_count++] =
-            batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
-      if (scratch.pending_count < W) continue;
-      set_up_tets<kStats>(f, tile, scratch.pending, W, scratch.polygons, stats);
-      scratch.pending_count -= W;
-      std::copy_n(scratch.pending + W, scratch.pending_count, scratch.pending);
+  traversal.run([&](const BvhNode& node, int) {
+    bool proxy = false;
+    if constexpr (kLod) {
+      const auto index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
+      proxy = !node.is_leaf() || lod.stops_at(index, node, tile.eye);
+    }
+    if (proxy) {
+      set_up_proxy<kStats>(f, tile, node, scratch.polygons, stats);
+    } else {
+      set_up_leaf<kStats>(f, tile, node, scratch, stats);
     }
   });
   if (scratch.pending_count > 0)
@@ -87,14 +138,14 @@ void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, i
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
 
-template <bool kStats, bool kClip>
+template <bool kStats, bool kClip, bool kLod>
 void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch& scratch,
                 TraceStats& stats) {
   Tile tile = make_tile(f.camera, f.view, f.volume.origin, f.extent.magnitude, x0, y0, kTileSize);
   scratch.polygons.reset(kPackets, kPackets, kTilePacket);
   const std::uint64_t extracted_before = stats.isopolygon_extractions;
   if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi))
-    collect_polygons<kStats, kClip>(f, tile, scratch, stats);
+    collect_polygons<kStats, kClip, kLod>(f, tile, scratch, stats);
   if constexpr (kStats)  // polygons beside the tile's pixels
     stats.frustum_culled_isopolygons +=
         stats.isopolygon_extractions - extracted_before - scratch.polygons.polygons_added();
@@ -104,7 +155,7 @@ void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch&
                                   x0 + px, y0 + py, py, px, image, stats);
 }
 
-template <bool kStats, bool kClip>
+template <bool kStats, bool kClip, bool kLod>
 void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
   const int across = (f.camera.width + kTileSize - 1) / kTileSize;
   const int tiles = across * ((f.camera.height + kTileSize - 1) / kTileSize);
@@ -112,10 +163,13 @@ void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
   tbb::parallel_for(
       0, tiles,
       [&](int t) {
-        // Per thread and kept across frames: a frame of a time loop finds its bins grown.
+        // Storage only, per worker thread: every tile starts from emptied bins, so nothing of
+        // one tile or frame reaches the next, but a time loop's frames find the bins grown (a
+        // scratch made per frame re-grew them and gave their pages back: slower in alternating
+        // runs at 1M tets). It holds the largest tile's polygons a thread has seen.
         thread_local TileScratch scratch;
-        trace_tile<kStats, kClip>(f, t % across * kTileSize, t / across * kTileSize, image, scratch,
-                                  stats.local());
+        trace_tile<kStats, kClip, kLod>(f, t % across * kTileSize, t / across * kTileSize, image,
+                                        scratch, stats.local());
       },
       tbb::simple_partitioner());
   if (total) {
@@ -127,12 +181,17 @@ void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
 
 void trace_tiles(const Frame& f, Framebuffer& image, bool clipped, bool collect,
                  TraceStats* stats) {
+  const auto with = [&](auto clip, auto lod) {
+    constexpr bool kClip = decltype(clip)::value, kLod = decltype(lod)::value;
+    collect ? trace_tiles_with<true, kClip, kLod>(f, image, stats)
+            : trace_tiles_with<false, kClip, kLod>(f, image, nullptr);
+  };
+  using Yes = std::true_type;
+  using No = std::false_type;
   if (clipped) {
-    collect ? trace_tiles_with<true, true>(f, image, stats)
-            : trace_tiles_with<false, true>(f, image, nullptr);
+    f.lod.enabled() ? with(Yes{}, Yes{}) : with(Yes{}, No{});
   } else {
-    collect ? trace_tiles_with<true, false>(f, image, stats)
-            : trace_tiles_with<false, false>(f, image, nullptr);
+    f.lod.enabled() ? with(No{}, Yes{}) : with(No{}, No{});
   }
 }
 

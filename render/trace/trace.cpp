@@ -50,15 +50,6 @@ void clip_extent(VolumeExtent& extent, const LocalClip& clip, Vec3f eye) {
   }
 }
 
-template <bool kLod>
-auto lod_policy(const Frame& f) {
-  if constexpr (kLod) {
-    return FootprintLod(f.lod, f.footprint_per_distance);
-  } else {
-    return NoLod{};
-  }
-}
-
 // Traces the packet's rays through the one traversal, with the node and hit filters of the
 // scene's clip region (none without one) or of a layer (layer_filter.hpp), and the scene's
 // level of detail (exact without one): a node the traversal stopped at, or a leaf narrow
@@ -346,9 +337,8 @@ void trace_frame(const Frame& f, Framebuffer& image, bool clipped, const TraceOp
       trace_with<32>(f, image, clipped, collect, stats);
       break;
     case PacketSize::tiled:
-      // Level of detail stops at inner nodes and layers re-trace rays: their packets are traced
-      // one by one (the same image, bitwise).
-      if (f.lod.enabled() || f.layers) {
+      // Layers re-trace rays: their packets are traced one by one (the same image, bitwise).
+      if (f.layers) {
         trace_with<kTilePacket>(f, image, clipped, collect, stats);
       } else {
         trace_tiles(f, image, clipped, collect, stats);
