@@ -81,6 +81,21 @@ void covered_lanes(const Floats (&position)[4], int limit, Ints& first, Ints& la
   last = simd::to_int(last_center);
 }
 
+// The lanes whose four points (relative to the eye, q[c][k]) all lie outside one plane of the
+// frustum (PacketFrustum::misses_hull, lanewise).
+Mask outside_frustum(const Floats (&q)[3][4], const PacketFrustum& frustum) {
+  Mask outside(false);
+  for (int p = 0; p < 4; ++p) {
+    Mask all(true);
+    for (int k = 0; k < 4; ++k) {
+      const Floats d = q[0][k] * frustum.nx[p] + q[1][k] * frustum.ny[p] + q[2][k] * frustum.nz[p];
+      all = all & (d < Floats(-frustum.slack[p]));
+    }
+    outside = outside | all;
+  }
+  return outside;
+}
+
 using V = Vec3<Floats>;
 
 V lane_corner(const Floats (&xyz)[3][4], int k) { return {xyz[0][k], xyz[1][k], xyz[2][k]}; }
@@ -211,21 +226,11 @@ TetBatch gather_tets(const TetVolume& volume, const std::uint32_t* tets, int cou
 }
 
 Mask outside_tile(const TetBatch& batch, const Tile& tile) {
-  const PacketFrustum& frustum = tile.frustum;
   const float eye[3] = {tile.eye.x, tile.eye.y, tile.eye.z};
   Floats q[3][4];
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 4; ++k) q[c][k] = batch.corner[c][k] - Floats(eye[c]);
-  Mask outside(false);
-  for (int p = 0; p < 4; ++p) {
-    Mask all(true);
-    for (int k = 0; k < 4; ++k) {
-      const Floats d = q[0][k] * frustum.nx[p] + q[1][k] * frustum.ny[p] + q[2][k] * frustum.nz[p];
-      all = all & (d < Floats(-frustum.slack[p]));
-    }
-    outside = outside | all;
-  }
-  return outside;
+  return outside_frustum(q, tile.frustum);
 }
 
 int set_up_polygons(const TetVolume& volume, const TetBatch& batch, Mask live, float iso,
@@ -241,7 +246,11 @@ int set_up_polygons(const TetVolume& volume, const TetBatch& batch, Mask live, f
   const float eye[3] = {tile.eye.x, tile.eye.y, tile.eye.z};
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 4; ++k) f[TilePolygons::kRel + 4 * c + k] = xyz[c][k] - Floats(eye[c]);
-  live = live & lanewise_planes(xyz, tile.eye, f) & covered_tile_pixels(tile, f, n);
+  Floats rel[3][4];
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 4; ++k) rel[c][k] = f[TilePolygons::kRel + 4 * c + k];
+  live = live & !outside_frustum(rel, tile.frustum) & lanewise_planes(xyz, tile.eye, f) &
+         covered_tile_pixels(tile, f, n);
   if (!xsimd::any(live)) return extracted;
   n[TilePolygons::kKey] =
       simd::gather(reinterpret_cast<const std::int32_t*>(volume.tet_ids.data()), batch.index);

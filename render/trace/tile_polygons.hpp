@@ -95,8 +95,9 @@ TetBatch gather_tets(const TetVolume& volume, const std::uint32_t* tets, int cou
 simd::Mask outside_tile(const TetBatch& batch, const Tile& tile);
 
 // Sets up the polygons of isovalue `iso` (index iso_index of the frame's sorted isovalues) of
-// the `live` lanes' tets and adds those that cover a pixel center of the tile (within the
-// margin of covered_range) to `out`. Returns how many of the lanes' tets hold a polygon.
+// the `live` lanes' tets and adds to `out` those that set_up_polygon would keep for the tile:
+// hull within its frustum, a pixel center of it covered, an area. Returns how many of the
+// lanes' tets hold a polygon.
 int set_up_polygons(const TetVolume& volume, const TetBatch& batch, simd::Mask live, float iso,
                     int iso_index, const Tile& tile, TilePolygons& out);
 

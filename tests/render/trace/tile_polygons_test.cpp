@@ -1,5 +1,5 @@
 // The lanewise isopolygon set-up of tiles (render/trace/tile_polygons.hpp) against the one-polygon
-// forms it mirrors (extract_isopolygon, polygon_planes, near_floor, project_rows): for every tet
+// forms it mirrors (extract_isopolygon, set_up_polygon): for every tet
 // and isovalue of random and grid-valued fields, seen by cameras outside and inside the mesh,
 // the tile keeps exactly the polygons that cover one of its pixels, with bitwise the same
 // set-up, and bins each in the packets whose pixels it covers.
@@ -51,15 +51,9 @@ std::optional<TilePolygon> expected_polygon(const render::TetVolume& volume, std
   if (case_index == 0 || case_index == 15 || tile.frustum.misses_hull(q)) return std::nullopt;
   const render::Isopolygon poly = render::extract_isopolygon(corners, case_index, iso);
   TilePolygon expected{};
-  render::simd::Float4 rel[3];
-  render::relative_corners(poly, tile.eye, rel, expected.setup);
-  const render::simd::Float4 depth = render::view_depths(rel, tile.projection);
-  expected.setup.near_floor =
-      render::near_floor(render::simd::min_of(depth), tile.projection.depth_slack);
-  const render::CoveredPixels covered =
-      render::project_rows(rel, depth, tile.projection, tile.last_row, tile.last_column, true);
-  if (covered.first_row > covered.last_row || covered.first_column > covered.last_column ||
-      !render::polygon_planes(poly, tile.eye, expected.setup))
+  render::CoveredPixels covered;
+  if (!render::set_up_polygon(poly, tile.eye, &tile.frustum, tile.projection, tile.last_row,
+                              tile.last_column, true, expected.setup, covered))
     return std::nullopt;
   expected.id = {volume.tet_ids[t], static_cast<std::int32_t>(t), k};
   expected.first_row = static_cast<std::int16_t>(covered.first_row);
