@@ -7,7 +7,6 @@
 #include <xsimd/xsimd.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -371,26 +370,6 @@ inline std::uint64_t bits(Mask m) {
 #endif
 }
 inline std::uint64_t bits(bool m) { return m ? 1u : 0u; }
-
-// Writes the lanes of `v` where `m` is set to `out`, in lane order, and returns how many; `out`
-// has room for a whole batch (the lanes past the count are written with garbage).
-template <typename Batch, typename T>
-inline int compress_store(Batch v, Mask m, T* out) {
-#if XSIMD_WITH_AVX512F
-  if constexpr (std::is_same_v<T, float>) {
-    _mm512_storeu_ps(out, _mm512_maskz_compress_ps(static_cast<__mmask16>(m), v));
-  } else {
-    _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(static_cast<__mmask16>(m), v));
-  }
-  return std::popcount(static_cast<unsigned>(static_cast<__mmask16>(m)));
-#else
-  alignas(64) T lanes[kWidth];
-  v.store_aligned(lanes);
-  int n = 0;
-  for (std::uint64_t b = bits(m); b; b &= b - 1) out[n++] = lanes[std::countr_zero(b)];
-  return n;
-#endif
-}
 
 // The largest lane (no NaN among them), of a batch or of one float.
 inline float max_of(Floats v) {

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "render/trace/isopolygon_intersect.hpp"
+#include "render/trace/layer_peeling.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/tet_straddle.hpp"
@@ -116,18 +117,13 @@ void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceSta
     set_up_tets<kStats>(f, tile, scratch.pending, scratch.pending_count, scratch.polygons, stats);
 }
 
-// The packet at (x0, y0) of the image tests its rays against its bin and writes its pixels.
-template <bool kStats, bool kClip>
-void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, int y0, int tile_row,
-                  int tile_column, Framebuffer& image, TraceStats& stats) {
+// Tests the packet's rays against its bin (the polygons of the packet at tile_row, tile_column
+// of its tile), with a hit filter: the clip region's, or a layer's.
+template <bool kStats, typename HitFilter>
+void test_bin(const std::vector<TilePolygon>& bin, RayPacket<kTilePacket>& packet, int tile_row,
+              int tile_column, HitFilter hit_filter, TraceStats& stats) {
   constexpr int S = kTilePacket;
-  if (bin.empty()) return write_background<S, kStats>(f, x0, y0, image, stats);
-  RayPacket<S> packet;
-  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
-  setup_packet<S, false>(packet, f.camera, f.view, f.directions, f.volume.origin, frustum,
-                         f.extent.magnitude, x0, y0);
-  IsopolygonIntersector<S, kStats, ClipHits<kClip>> intersector(packet, stats,
-                                                                ClipHits<kClip>(f.clip));
+  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
   for (const TilePolygon& p : bin) {
     const int first_row = std::max<int>(p.first_row - tile_row, 0);
     const int last_row = std::min<int>(p.last_row - tile_row, S - 1);
@@ -135,6 +131,27 @@ void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, i
                                std::max<int>(p.first_column - tile_column, 0),
                                std::min<int>(p.last_column - tile_column, S - 1));
   }
+}
+
+// The packet at (x0, y0) of the image tests its rays against its bin and writes its pixels, or,
+// in a frame of transparent layers, peels them by testing the bin again for each.
+template <bool kStats, bool kClip>
+void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, int y0, int tile_row,
+                  int tile_column, Framebuffer& image, TraceStats& stats) {
+  constexpr int S = kTilePacket;
+  if (bin.empty()) {
+    if (f.layers) return;  // no layers: the slots' counts are zero
+    return write_background<S, kStats>(f, x0, y0, image, stats);
+  }
+  RayPacket<S> packet;
+  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
+  setup_packet<S, false>(packet, f.camera, f.view, f.directions, f.volume.origin, frustum,
+                         f.extent.magnitude, x0, y0);
+  test_bin<kStats>(bin, packet, tile_row, tile_column, ClipHits<kClip>(f.clip), stats);
+  if (f.layers)
+    return peel_layers<S, kStats, kClip>(f, packet, x0, y0, stats, [&](auto, auto hits) {
+      test_bin<kStats>(bin, packet, tile_row, tile_column, hits, stats);
+    });
   write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
 }
 
