@@ -103,7 +103,7 @@ void light_packet(const Frame& f, const RayPacket<S>& packet, const RayHits& hit
     Framebuffer& term = (*f.shadow_terms)[j];
     for (int row = 0; row < S && y0 + row < f.camera.height; ++row)
       for (int c = 0; c < columns; ++c) {
-        const int r = row * S + c;
+        const int r = RayPacket<S>::index(row, c);
         const std::size_t p = term.index(x0 + c, y0 + row);
         float* rgba = &term.rgba[4 * p];
         if (packet.tet[r] < 0) {
@@ -133,22 +133,19 @@ void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuf
   if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
   write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
     constexpr float kInf = std::numeric_limits<float>::infinity();
-    const int r0 = row * S;
-    const std::int32_t* tet = packet.tet + r0;
     for (int c = 0; c < columns; ++c) {
-      out.depth[c] = tet[c] >= 0 ? depth[r0 + c] : kInf;
-      out.hit[c] = tet[c] >= 0 ? packet.key[r0 + c] : kNoHit;
-    }
-    for (int c = 0; c < columns; ++c) {
-      const int r = r0 + c;
+      const int r = RayPacket<S>::index(row, c);
+      const bool hit = packet.tet[r] >= 0;
+      out.depth[c] = hit ? depth[r] : kInf;
+      out.hit[c] = hit ? packet.key[r] : kNoHit;
       float* rgba = &out.rgba[4 * c];
-      if (tet[c] < 0) {
+      if (!hit) {
         std::fill_n(rgba, 4, 0.0f);
         continue;
       }
       if constexpr (kStats) ++stats.hits;
-      shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r], tet[c],
-                  packet.iso[r], light[r], rgba);
+      shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
+                  packet.tet[r], packet.iso[r], light[r], rgba);
     }
     if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
   });

@@ -223,34 +223,27 @@ class IsopolygonIntersector {
     PolygonSetup s;
     CoveredPixels covered;
     if (!set_up_polygon(poly, packet_.eye, S > 1 ? &packet_.frustum : nullptr, packet_.projection,
-                        S - 1, S - 1, S > W, s, covered))
+                        S - 1, S - 1, S > Packet::kBlockColumns, s, covered))
       return culled();
-    const int begin = std::max(first_active, covered.first_row * S);
-    const int end = (covered.last_row + 1) * S;
-    if (begin >= end) return culled();
-    return intersect_rays(s, id, begin, end, covered.first_column, covered.last_column);
+    if (Packet::index(covered.last_row, covered.last_column) < first_active) return culled();
+    return intersect_rays(s, id, first_active, covered);
   }
 
-  // Tests the lane batches of rays [begin, end) that hold a column of [first_column,
-  // last_column] (every batch where a batch spans whole rows) against a polygon set up for the
-  // packet's eye. A batch whose every ray has a hit nearer than the polygon's distance floor is
-  // skipped (occlusion culling per batch, exact: no distance computed to the polygon can win).
-  bool intersect_rays(const PolygonSetup& s, const PolygonHit& id, int begin, int end,
-                      int first_column, int last_column) {
+  // Tests the lane batches (blocks of pixels) that hold a pixel of `covered` and a ray at or after
+  // first_active against a polygon set up for the packet's eye. A batch whose every ray has a hit
+  // nearer than the polygon's distance floor is skipped (occlusion culling per batch, exact: no
+  // distance computed to the polygon can win).
+  bool intersect_rays(const PolygonSetup& s, const PolygonHit& id, int first_active,
+                      const CoveredPixels& covered) {
+    constexpr int rows = Packet::kBlockRows, columns = Packet::kBlockColumns;
     bool any_hit = false;
-    const auto test = [&](int base) {
-      if (s.near_floor > packet_.batch_far[base / W]) return;
-      any_hit |= intersect_lanes(s, id, base);
-    };
-    if constexpr (S > W) {
-      const int first_batch = first_column / W * W;
-      for (int row = begin / S * S; row < end; row += S)
-        for (int base = std::max(row + first_batch, begin / W * W); base <= row + last_column;
-             base += W)
-          test(base);
-    } else {
-      for (int base = begin / W * W; base < end; base += W) test(base);
-    }
+    for (int row = covered.first_row / rows * rows; row <= covered.last_row; row += rows)
+      for (int column = covered.first_column / columns * columns; column <= covered.last_column;
+           column += columns) {
+        const int base = Packet::index(row, column);
+        if (base + W <= first_active || s.near_floor > packet_.batch_far[base / W]) continue;
+        any_hit |= intersect_lanes(s, id, base);
+      }
     return any_hit;
   }
 

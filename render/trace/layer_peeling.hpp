@@ -59,7 +59,7 @@ void write_layer(const Frame& f, RayPacket<S>& packet, int x0, int y0, int layer
   for (int row = 0; row < S && y0 + row < f.camera.height; ++row) {
     if constexpr (kStats) stats.rays += layer == 0 ? static_cast<std::uint64_t>(columns) : 0;
     for (int c = 0; c < columns; ++c) {
-      const int r = row * S + c;
+      const int r = RayPacket<S>::index(row, c);
       if (packet.tet[r] < 0) continue;
       if constexpr (kStats) ++stats.hits;
       const std::size_t p = static_cast<std::size_t>(y0 + row) * f.camera.width + x0 + c;

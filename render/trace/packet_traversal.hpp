@@ -154,7 +154,7 @@ class PacketTraversal {
     if constexpr (kTile) {
       return packet_.center_direction;
     } else {
-      const int mid = Packet::kRays / 2;
+      constexpr int mid = Packet::index(Packet::kSide / 2, Packet::kSide / 2);
       return {packet_.dx[mid], packet_.dy[mid], packet_.dz[mid]};
     }
   }

@@ -17,7 +17,8 @@ float tilt_zero(float d) { return d == 0 ? std::copysign(1e-20f, d) : d; }
 }  // namespace
 
 // Directions of one packet row: pixel (x0 + col, y) for col in [0, S), the same operations as
-// normalize(column + row) in double, written so the compiler vectorizes them.
+// normalize(column + row) in double, written so the compiler vectorizes them, then moved to the
+// row's places in the packet's blocks.
 template <int S>
 void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, int pixel_row,
                int row, bool row_valid, int valid_columns) {
@@ -27,10 +28,7 @@ void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, 
   const double* cx = directions.column_x.data() + x0;
   const double* cy = directions.column_y.data() + x0;
   const double* cz = directions.column_z.data() + x0;
-  float* dx = packet.dx + row * S;
-  float* dy = packet.dy + row * S;
-  float* dz = packet.dz + row * S;
-  float* tmax = packet.tmax + row * S;
+  alignas(64) float dx[S], dy[S], dz[S], tmax[S];
   for (int col = 0; col < S; ++col) {
     const double x = cx[col] + r.x, y = cy[col] + r.y, z = cz[col] + r.z;
     const double inverse_length = 1.0 / std::sqrt(x * x + y * y + z * z);
@@ -38,6 +36,14 @@ void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, 
     dy[col] = tilt_zero(static_cast<float>(inverse_length * y));
     dz[col] = tilt_zero(static_cast<float>(inverse_length * z));
     tmax[col] = row_valid && col < valid_columns ? kInf : -kInf;
+  }
+  constexpr int block = RayPacket<S>::kBlockColumns;
+  for (int col = 0; col < S; col += block) {
+    const int ray = RayPacket<S>::index(row, col);
+    std::copy_n(dx + col, block, packet.dx + ray);
+    std::copy_n(dy + col, block, packet.dy + ray);
+    std::copy_n(dz + col, block, packet.dz + ray);
+    std::copy_n(tmax + col, block, packet.tmax + ray);
   }
 }
 

@@ -27,9 +27,24 @@ struct RowProjection {
 
 template <int S>
 struct alignas(64) RayPacket {
+  static constexpr int kSide = S;
   static constexpr int kRays = S * S;
   using Lanes = simd::LaneTypes<kRays>;
   static constexpr int kLaneWidth = Lanes::width;
+
+  // The rays' order: each lane batch is a block of kBlockRows x kBlockColumns pixels (4 x 4 with
+  // 16 lanes, 2 x 4 with 8, 2 x 2 with 4), row by row within the block, the blocks row by row
+  // in the packet. A batch then covers a compact patch of the image, so a polygon a few pixels
+  // wide meets fewer batches than it would if each batch were a piece of one row.
+  static constexpr int kBlockColumns = std::min(S, kLaneWidth >= 8 ? 4 : kLaneWidth >= 4 ? 2 : 1);
+  static constexpr int kBlockRows = kLaneWidth / kBlockColumns;
+  static_assert(S % kBlockColumns == 0 && S % kBlockRows == 0, "blocks tile the packet");
+
+  // The ray of the pixel at (row, column) of the packet.
+  static constexpr int index(int row, int column) {
+    return ((row / kBlockRows) * (S / kBlockColumns) + column / kBlockColumns) * kLaneWidth +
+           (row % kBlockRows) * kBlockColumns + column % kBlockColumns;
+  }
 
   alignas(64) float dx[kRays], dy[kRays], dz[kRays];  // normalized directions
   alignas(64) float ix[kRays], iy[kRays], iz[kRays];  // their inverses

@@ -124,13 +124,12 @@ void test_bin(const std::vector<TilePolygon>& bin, RayPacket<kTilePacket>& packe
               int tile_column, HitFilter hit_filter, TraceStats& stats) {
   constexpr int S = kTilePacket;
   IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
-  for (const TilePolygon& p : bin) {
-    const int first_row = std::max<int>(p.first_row - tile_row, 0);
-    const int last_row = std::min<int>(p.last_row - tile_row, S - 1);
-    intersector.intersect_rays(p.setup, p.id, first_row * S, (last_row + 1) * S,
-                               std::max<int>(p.first_column - tile_column, 0),
-                               std::min<int>(p.last_column - tile_column, S - 1));
-  }
+  for (const TilePolygon& p : bin)
+    intersector.intersect_rays(
+        p.setup, p.id, 0,
+        {std::max<int>(p.first_row - tile_row, 0), std::min<int>(p.last_row - tile_row, S - 1),
+         std::max<int>(p.first_column - tile_column, 0),
+         std::min<int>(p.last_column - tile_column, S - 1)});
 }
 
 // The packet at (x0, y0) of the image tests its rays against its bin and writes its pixels, or,

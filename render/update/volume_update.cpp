@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "render/core/stopwatch.hpp"
 #include "render/bvh/node_planes.hpp"
+#include "render/core/stopwatch.hpp"
 #include "render/core/value_bounds.hpp"
 #include "render/update/vertex_gradients.hpp"
 #include "render/volume/point_read.hpp"

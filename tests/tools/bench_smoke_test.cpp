@@ -56,6 +56,9 @@ void expect_every_key(const Json::Value& root) {
   }
   expect_numbers(scene["ref"], {"contour_ms", "triangles", "embree_build_ms", "embree_trace_ms",
                                 "depth_agree_fraction", "depth_median_rel_diff"});
+  expect_numbers(scene["ref"]["trace_in_turn"], {"rounds", "tetray_ms", "embree_ms"});
+  EXPECT_GT(scene["ref"]["trace_in_turn"]["tetray_ms"].asDouble(), 0.0);
+  EXPECT_GT(scene["ref"]["trace_in_turn"]["embree_ms"].asDouble(), 0.0);
   expect_numbers(scene["refit"],
                  {"field_only_ms", "geometry_ms", "bound_field_only_ms", "bound_geometry_ms",
                   "rebuild_ms", "step_total_ms", "step_total_default_packet_ms",

@@ -5,10 +5,10 @@
 #include <functional>
 #include <vector>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/trace/colormap.hpp"
 #include "render/walk/clip_cap.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 #include "tools/bench_common/json_file.hpp"
 
 namespace tetray::bench {

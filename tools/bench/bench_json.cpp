@@ -31,6 +31,9 @@ Json::Value reference(const ReferenceFigures& ref) {
   json["embree_same_depth"] = ref.embree_same_depth;
   json["depth_agree_fraction"] = number(ref.depth_agree_fraction);
   json["depth_median_rel_diff"] = number(ref.depth_median_rel_diff);
+  json["trace_in_turn"]["rounds"] = ref.in_turn.rounds;
+  json["trace_in_turn"]["tetray_ms"] = number(ref.in_turn.tetray_ms);
+  json["trace_in_turn"]["embree_ms"] = number(ref.in_turn.embree_ms);
   return json;
 }
 

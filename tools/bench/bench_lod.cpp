@@ -6,9 +6,9 @@
 
 #include "bench_reference_embree.hpp"
 #include "bench_reference_vtk.hpp"
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
 #include "render/bvh/node_planes.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {

@@ -19,10 +19,10 @@
 #include "bench_reference_embree.hpp"
 #include "bench_reference_vtk.hpp"
 #include "bench_refit.hpp"
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_table.hpp"
 #include "bench_tetray.hpp"
 #include "bench_timing.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {
@@ -46,6 +46,7 @@ ReferenceFigures measure_reference(const GyroidTwist& scene, const render::Camer
   ref.embree_same_depth = embree.same_depth;
   ref.depth_agree_fraction = agreement.agree_fraction;
   ref.depth_median_rel_diff = agreement.median_rel_diff;
+  ref.in_turn = trace_in_turn(scene, contour.triangles, camera, threads, embree.packets);
   return ref;
 }
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <utility>
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "bench_bandwidth.hpp"
 #include "bench_reference_step.hpp"
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {

@@ -10,6 +10,7 @@
 #include "bench_cap.hpp"
 #include "bench_layers.hpp"
 #include "bench_shading.hpp"
+#include "bench_trace_in_turn.hpp"
 #include "bench_vtk_volume.hpp"
 #include "bench_walk.hpp"
 #include "render/trace/trace.hpp"
@@ -43,6 +44,7 @@ struct ReferenceFigures {
   bool embree_same_depth = false;  // its packet and single-ray traces gave the same depth image
   double depth_agree_fraction = 0;
   double depth_median_rel_diff = 0;
+  TraceInTurn in_turn;  // tetray's exact trace and Embree's, alternating: the trace targets
 };
 
 // A new time step on the same topology. The bounds are memcpy times of the bytes each

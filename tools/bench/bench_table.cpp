@@ -41,6 +41,11 @@ void print_reference(const ReferenceFigures& r) {
       r.embree_same_depth ? "give the same depth image" : "DIFFER");
   std::printf("  depth check    %.4f%% of pixels agree on hit/miss, median rel diff %.2e\n",
               100 * r.depth_agree_fraction, r.depth_median_rel_diff);
+  std::printf(
+      "  trace in turn  tetray %.1f ms (%s), Embree %.1f ms: %.2fx (best of %d rounds, a frame "
+      "of each per round)\n",
+      r.in_turn.tetray_ms, render::to_string(render::TraceOptions{}.packet), r.in_turn.embree_ms,
+      r.in_turn.tetray_ms / r.in_turn.embree_ms, r.in_turn.rounds);
 }
 
 void print_refit(const RefitFigures& r) {

@@ -31,8 +31,7 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
   const double geometry_vs_bound = s.refit.geometry_ms / s.refit.bound_geometry_ms;
   const double field_vs_bound = s.refit.field_only_ms / s.refit.bound_field_only_ms;
   const SizeTargets& sized = size_targets(s.n);
-  const double default_vs_embree =
-      s.packet(render::TraceOptions{}.packet).trace_ms / s.ref.embree_trace_ms;
+  const double default_vs_embree = s.ref.in_turn.tetray_ms / s.ref.in_turn.embree_ms;
   const double default_step_speedup = s.refit.ref_step_total_ms / s.refit.step_total_default_ms;
   const bool rebuilt = s.refit.strong_deformation_kind == "rebuild";
   return {

@@ -1,7 +1,7 @@
 #include "bench_tetray.hpp"
 
-#include "tools/bench_common/bench_scene.hpp"
 #include "bench_timing.hpp"
+#include "tools/bench_common/bench_scene.hpp"
 
 namespace tetray::bench {
 namespace {
