@@ -185,7 +185,11 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
   for (int k = 0; k < kInts; ++k) ints[k].store_aligned(n[k]);
   for (std::uint64_t lanes = simd::bits(valid); lanes; lanes &= lanes - 1) {
     const int l = std::countr_zero(lanes);
-    TilePolygon p;
+    const int first_row = n[kFirstRow][l], first_column = n[kFirstColumn][l];
+    // Written in place in its first bin, and copied from there to any other it covers.
+    TilePolygon& p = bins_[static_cast<std::size_t>(first_row / packet_size_ * across_ +
+                                                    first_column / packet_size_)]
+                         .emplace_back();
     for (int c = 0; c < 3; ++c)
       for (int k = 0; k < 4; ++k) {
         p.setup.rel[c][k] = f[kRel + 4 * c + k][l];
@@ -195,19 +199,31 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     p.setup.plane = f[kPlane][l];
     p.setup.near_floor = f[kNearFloor][l];
     p.id = {static_cast<std::uint32_t>(n[kKey][l]), n[kTet][l], n[kIso][l]};
-    p.first_row = static_cast<std::int16_t>(n[kFirstRow][l]);
+    p.first_row = static_cast<std::int16_t>(first_row);
     p.last_row = static_cast<std::int16_t>(n[kLastRow][l]);
-    p.first_column = static_cast<std::int16_t>(n[kFirstColumn][l]);
+    p.first_column = static_cast<std::int16_t>(first_column);
     p.last_column = static_cast<std::int16_t>(n[kLastColumn][l]);
-    add(p);
+    copy_to_other_bins(p);
+    ++added_;
   }
 }
 
 void TilePolygons::add(const TilePolygon& p) {
-  for (int y = p.first_row / packet_size_; y <= p.last_row / packet_size_; ++y)
-    for (int x = p.first_column / packet_size_; x <= p.last_column / packet_size_; ++x)
-      bins_[static_cast<std::size_t>(y * across_ + x)].push_back(p);
+  bins_[static_cast<std::size_t>(p.first_row / packet_size_ * across_ +
+                                 p.first_column / packet_size_)]
+      .push_back(p);
+  copy_to_other_bins(p);
   ++added_;
+}
+
+void TilePolygons::copy_to_other_bins(const TilePolygon& p) {
+  const int first_y = p.first_row / packet_size_, last_y = p.last_row / packet_size_;
+  const int first_x = p.first_column / packet_size_, last_x = p.last_column / packet_size_;
+  if (first_y == last_y && first_x == last_x) return;
+  for (int y = first_y; y <= last_y; ++y)
+    for (int x = first_x; x <= last_x; ++x)
+      if (y != first_y || x != first_x)
+        bins_[static_cast<std::size_t>(y * across_ + x)].push_back(p);
 }
 
 TetBatch gather_tets(const TetVolume& volume, const std::uint32_t* tets, int count) {

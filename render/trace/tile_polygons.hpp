@@ -75,6 +75,9 @@ class TilePolygons {
   std::uint64_t polygons_added() const { return added_; }
 
  private:
+  // Adds p, which lies in the bin of its first row and column, to the other bins it covers.
+  void copy_to_other_bins(const TilePolygon& p);
+
   std::vector<std::vector<TilePolygon>> bins_;
   int across_ = 0, packet_size_ = 1;
   std::uint64_t added_ = 0;
