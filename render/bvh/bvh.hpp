@@ -42,7 +42,7 @@ struct BvhBuildOptions {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
+  LargeArray<BvhNode> nodes;  // nodes[0] is the root (absent for an empty volume)
   // Subtrees recorded at build time for parallel refit (Wald et al. 2007, §6.2): each subtree's
   // root sits among the top nodes, the rest of it in nodes [begin, end), children after parents.
   struct Subtree {
@@ -53,7 +53,7 @@ struct Bvh {
   // The distinct vertices of each leaf's tets, read by the refit (leaf_vertices.hpp): node i's
   // are leaf_vertices[leaf_vertex_begin[i], leaf_vertex_begin[i + 1]), none for inner nodes.
   std::vector<std::uint32_t> leaf_vertex_begin;
-  std::vector<std::uint32_t> leaf_vertices;
+  LargeArray<std::uint32_t> leaf_vertices;
   // SAH cost (traversal and tet cost 1, normalised by the root's surface area) at the last
   // build and after the last refit: the quality measure of the rebuild policy.
   double sah_cost_at_build = 0;

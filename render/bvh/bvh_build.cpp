@@ -80,7 +80,7 @@ struct Pending {
 
 // Splits the top levels breadth-first until every pending range is small enough to be a
 // subtree of its own; returns those, in a deterministic order.
-std::vector<Pending> build_top(BuildContext& ctx, std::vector<BvhNode>& top,
+std::vector<Pending> build_top(BuildContext& ctx, LargeArray<BvhNode>& top,
                                std::vector<std::uint32_t>& top_inner) {
   const auto n = static_cast<std::uint32_t>(ctx.items.size());
   const std::uint32_t subtree_size = std::max<std::uint32_t>(
@@ -110,7 +110,7 @@ std::vector<Pending> build_top(BuildContext& ctx, std::vector<BvhNode>& top,
 }
 
 // Places each subtree's root in its top slot and the rest after the top nodes.
-void lay_out(std::vector<BvhNode>& top, std::vector<std::vector<BvhNode>>& locals,
+void lay_out(LargeArray<BvhNode>& top, std::vector<std::vector<BvhNode>>& locals,
              const std::vector<Pending>& pending, Bvh& bvh) {
   std::vector<std::uint32_t> base(locals.size());
   auto next = static_cast<std::uint32_t>(top.size());
@@ -137,8 +137,8 @@ void lay_out(std::vector<BvhNode>& top, std::vector<std::vector<BvhNode>>& local
 
 // Puts the tets and their ids into leaf order.
 void apply_order(TetVolume& volume, const std::vector<BuildItem>& order) {
-  std::vector<Tet> tets(order.size());
-  std::vector<std::uint32_t> ids(order.size());
+  LargeArray<Tet> tets(order.size());
+  LargeArray<std::uint32_t> ids(order.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size()), [&](const auto& block) {
     for (std::size_t i = block.begin(); i != block.end(); ++i) {
       tets[i] = volume.tets[order[i].tet];
@@ -160,7 +160,7 @@ Bvh build_bvh(TetVolume& volume, const BvhBuildOptions& options) {
   }
   BuildContext ctx{options, {}, {}};
   prepare_inputs(volume, ctx);
-  std::vector<BvhNode> top;
+  LargeArray<BvhNode> top;
   const std::vector<Pending> pending = build_top(ctx, top, bvh.top_nodes_bottom_up);
   std::vector<std::vector<BvhNode>> locals(pending.size());
   tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t s) {

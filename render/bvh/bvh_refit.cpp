@@ -31,7 +31,7 @@ void fit_leaf_range(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, Bv
                           node.bounds.hi[3]);
 }
 
-Bounds4Builder inner_bound(const std::vector<BvhNode>& nodes, const BvhNode& node) {
+Bounds4Builder inner_bound(const LargeArray<BvhNode>& nodes, const BvhNode& node) {
   Bounds4Builder b;
   b.grow(nodes[node.first].bounds);
   b.grow(nodes[node.first + 1].bounds);

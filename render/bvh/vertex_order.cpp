@@ -28,9 +28,9 @@ TetRange tets_of(const Bvh& bvh, const Bvh::Subtree& st) {
   return r;
 }
 
-template <typename T>
-void permute(std::vector<T>& items, const std::vector<std::uint32_t>& order) {
-  std::vector<T> out(order.size());
+template <typename Array>
+void permute(Array& items, const std::vector<std::uint32_t>& order) {
+  Array out(order.size());
   tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) { out[k] = items[order[k]]; });
   items.swap(out);
 }

@@ -5,28 +5,16 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <new>
-#include <vector>
+
+#include "render/core/large_array.hpp"
 
 namespace tetray::render {
 
-// Allocates on cache-line boundaries, so that whole pixel rows of a packet can be written with
-// streaming stores (trace.cpp), which need aligned addresses.
+// On cache-line boundaries, so that whole pixel rows of a packet can be written with streaming
+// stores (frame_pixels.hpp), which need aligned addresses; an image's rows lie on huge pages
+// where the system grants them (a tile writes 128 rows of each array).
 template <typename T>
-struct CacheLineAllocator {
-  using value_type = T;
-  static constexpr std::align_val_t kAlignment{64};
-
-  CacheLineAllocator() = default;
-  template <typename U>
-  CacheLineAllocator(const CacheLineAllocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
-  bool operator==(const CacheLineAllocator&) const { return true; }
-};
-
-template <typename T>
-using PixelArray = std::vector<T, CacheLineAllocator<T>>;
+using PixelArray = LargeArray<T>;
 
 inline constexpr std::uint32_t kNoHit = std::numeric_limits<std::uint32_t>::max();
 

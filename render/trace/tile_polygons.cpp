@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 namespace tetray::render {
 namespace {
@@ -171,8 +172,10 @@ Tile make_tile(const Camera& camera, const CameraFrame& frame, Vec3d origin, flo
 }
 
 void TilePolygons::reset(int packets_across, int packets_down, int packet_size) {
+  if (!std::has_single_bit(static_cast<unsigned>(packet_size)))
+    throw std::invalid_argument("TilePolygons: the packet size must be a power of two");
   across_ = packets_across;
-  packet_size_ = packet_size;
+  packet_shift_ = std::countr_zero(static_cast<unsigned>(packet_size));
   bins_.resize(std::max(bins_.size(), static_cast<std::size_t>(packets_across * packets_down)));
   for (std::vector<TilePolygon>& bin : bins_) bin.clear();
   added_ = 0;
@@ -187,9 +190,7 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     const int l = std::countr_zero(lanes);
     const int first_row = n[kFirstRow][l], first_column = n[kFirstColumn][l];
     // Written in place in its first bin, and copied from there to any other it covers.
-    TilePolygon& p = bins_[static_cast<std::size_t>(first_row / packet_size_ * across_ +
-                                                    first_column / packet_size_)]
-                         .emplace_back();
+    TilePolygon& p = bins_[bin_of(first_row, first_column)].emplace_back();
     for (int c = 0; c < 3; ++c)
       for (int k = 0; k < 4; ++k) {
         p.setup.rel[c][k] = f[kRel + 4 * c + k][l];
@@ -209,16 +210,14 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
 }
 
 void TilePolygons::add(const TilePolygon& p) {
-  bins_[static_cast<std::size_t>(p.first_row / packet_size_ * across_ +
-                                 p.first_column / packet_size_)]
-      .push_back(p);
+  bins_[bin_of(p.first_row, p.first_column)].push_back(p);
   copy_to_other_bins(p);
   ++added_;
 }
 
 void TilePolygons::copy_to_other_bins(const TilePolygon& p) {
-  const int first_y = p.first_row / packet_size_, last_y = p.last_row / packet_size_;
-  const int first_x = p.first_column / packet_size_, last_x = p.last_column / packet_size_;
+  const int first_y = p.first_row >> packet_shift_, last_y = p.last_row >> packet_shift_;
+  const int first_x = p.first_column >> packet_shift_, last_x = p.last_column >> packet_shift_;
   if (first_y == last_y && first_x == last_x) return;
   for (int y = first_y; y <= last_y; ++y)
     for (int x = first_x; x <= last_x; ++x)

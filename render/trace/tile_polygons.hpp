@@ -61,7 +61,8 @@ class TilePolygons {
   static constexpr int kFirstRow = 0, kLastRow = 1, kFirstColumn = 2, kLastColumn = 3, kKey = 4,
                        kTet = 5, kIso = 6, kInts = 7;
 
-  // Empties the bins, for a tile of packets_across x packets_down packets.
+  // Empties the bins, for a tile of packets_across x packets_down packets of packet_size (a power
+  // of two: the bins are found by shifts, not by divisions, which cost more than the binning).
   void reset(int packets_across, int packets_down, int packet_size);
   // Adds the polygons of the lanes of `valid` to the bins of the packets they cover.
   void add(const simd::Floats (&floats)[kFloats], const simd::Ints (&ints)[kInts],
@@ -75,11 +76,14 @@ class TilePolygons {
   std::uint64_t polygons_added() const { return added_; }
 
  private:
+  std::size_t bin_of(int row, int column) const {
+    return static_cast<std::size_t>((row >> packet_shift_) * across_ + (column >> packet_shift_));
+  }
   // Adds p, which lies in the bin of its first row and column, to the other bins it covers.
   void copy_to_other_bins(const TilePolygon& p);
 
   std::vector<std::vector<TilePolygon>> bins_;
-  int across_ = 0, packet_size_ = 1;
+  int across_ = 0, packet_shift_ = 0;  // log2 of the packet size
   std::uint64_t added_ = 0;
 };
 

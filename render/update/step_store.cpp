@@ -10,7 +10,7 @@ namespace {
 // the subtrees, the caller's point -> vertex map) stay out of the copy.
 StepStore::Entry traceable_copy(const TetVolume& volume, const Bvh& bvh) {
   StepStore::Entry entry{volume, {}};
-  std::vector<std::uint32_t>().swap(entry.volume.point_vertex);
+  LargeArray<std::uint32_t>().swap(entry.volume.point_vertex);
   entry.bvh.nodes = bvh.nodes;
   entry.bvh.sah_cost_at_build = bvh.sah_cost_at_build;
   entry.bvh.sah_cost_now = bvh.sah_cost_now;

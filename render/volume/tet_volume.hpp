@@ -13,6 +13,7 @@
 #include <limits>
 #include <vector>
 
+#include "render/core/large_array.hpp"
 #include "render/core/vec.hpp"
 
 namespace tetray::render {
@@ -30,13 +31,13 @@ struct Tet {
 
 struct TetVolume {
   Vec3d origin{};  // world = origin + local
-  std::vector<Vertex> vertices;
-  std::vector<std::uint32_t> point_vertex;  // vertex of the caller's point p, or kNoVertex
-  std::vector<Tet> tets;                    // in BVH leaf order once a BVH is built
-  std::vector<std::uint32_t> tet_ids;       // caller's id of tets[k]
-  std::vector<float> color_field;           // optional per-vertex field to color by (empty: none)
-  std::vector<Vec3f> gradients;             // per-vertex field gradient for smooth shading
-                                            // (empty: flat shading only)
+  LargeArray<Vertex> vertices;
+  LargeArray<std::uint32_t> point_vertex;  // vertex of the caller's point p, or kNoVertex
+  LargeArray<Tet> tets;                    // in BVH leaf order once a BVH is built
+  LargeArray<std::uint32_t> tet_ids;       // caller's id of tets[k]
+  std::vector<float> color_field;          // optional per-vertex field to color by (empty: none)
+  std::vector<Vec3f> gradients;            // per-vertex field gradient for smooth shading
+                                           // (empty: flat shading only)
 
   std::size_t bytes() const {
     return vertices.capacity() * sizeof(Vertex) + tets.capacity() * sizeof(Tet) +

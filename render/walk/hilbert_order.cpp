@@ -77,7 +77,7 @@ TetVolume hilbert_ordered(const TetVolume& volume) {
   tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
   });
-  std::vector<std::uint32_t> renumber(volume.vertices.size(), kNoVertex);
+  LargeArray<std::uint32_t> renumber(volume.vertices.size(), kNoVertex);
   const bool gradients = volume.gradients.size() == volume.vertices.size();
   const bool colors = volume.color_field.size() == volume.vertices.size();
   for (const std::uint32_t t : order) {

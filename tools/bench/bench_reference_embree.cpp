@@ -24,8 +24,10 @@ using Scene = std::unique_ptr<RTCSceneTy, decltype(&rtcReleaseScene)>;
 constexpr int kTile = 4;  // 4x4 pixels per rtcIntersect16 packet
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Huge pages asked for explicitly (Embree's default on Linux): tetray's large arrays ask for them
+// too (render/core/large_array.hpp).
 Device make_device(int threads) {
-  const std::string config = "threads=" + std::to_string(threads);
+  const std::string config = "threads=" + std::to_string(threads) + ",hugepages=1";
   Device device(rtcNewDevice(config.c_str()), &rtcReleaseDevice);
   if (!device) throw std::runtime_error("rtcNewDevice failed");
   return device;

@@ -17,7 +17,7 @@ using render::isa::Isa;
 
 // What one variant computed: the BVH's node bounds after its build and refit, and the images.
 struct VariantResult {
-  std::vector<render::BvhNode> nodes;
+  render::LargeArray<render::BvhNode> nodes;
   std::vector<render::Framebuffer> images;
 };
 

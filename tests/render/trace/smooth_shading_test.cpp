@@ -123,7 +123,7 @@ TEST(VertexGradients, ExactSumsKeepASmallTermOnTheGridInEveryOrder) {
     for (const std::vector<render::Tet>& order :
          {std::vector{up, down, small}, std::vector{small, up, down},
           std::vector{up, small, down}}) {
-      volume.tets = order;
+      volume.tets.assign(order.begin(), order.end());
       render::compute_vertex_gradients(volume);
       EXPECT_EQ(volume.gradients[0].x, x) << f;
       EXPECT_EQ(volume.gradients[0].y, 0.0f) << f;

@@ -12,6 +12,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -157,6 +158,13 @@ TEST(TilePolygons, LanewiseSetUpMatchesOnePolygonWithIsovaluesOnVertices) {
       sample_field(mesh.points, [](Vec3d p) { return std::round(4 * (p.x + p.y - p.z)) / 4; }));
   const float isovalues[] = {0.0f, 0.5f};
   expect_lanewise_set_up(scene, isovalues, "grid");
+}
+
+// The bins are found by shifts: a packet size that is not a power of two is refused by name.
+TEST(TilePolygons, RefuseAPacketSizeThatIsNotAPowerOfTwo) {
+  render::TilePolygons polygons;
+  EXPECT_THROW(polygons.reset(4, 4, 24), std::invalid_argument);
+  EXPECT_NO_THROW(polygons.reset(4, 4, 32));
 }
 
 }  // namespace

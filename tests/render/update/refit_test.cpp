@@ -264,8 +264,8 @@ TEST(Refit, ThreadCountDoesNotChangeBuildOrRefit) {
   Series series(14);
   series.at(0.0);
   const auto& tets = series.box.tets;
-  std::vector<std::vector<render::BvhNode>> results;
-  std::vector<std::vector<std::uint32_t>> leaf_lists;
+  std::vector<render::LargeArray<render::BvhNode>> results;
+  std::vector<render::LargeArray<std::uint32_t>> leaf_lists;
   for (int threads : {1, 2, 8}) {
     tbb::task_arena arena(threads);
     arena.execute([&] {
