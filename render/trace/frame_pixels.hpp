@@ -183,4 +183,17 @@ auto lod_policy(const Frame& f) {
   }
 }
 
+// Whether a node the traversal hands to the leaf operation gives its proxy surface instead of
+// its tets: a node the level of detail stopped at, or a leaf narrow enough. Without level of
+// detail every node handed over is a leaf, and nothing is tested.
+template <typename Lod>
+bool gives_proxy(const Frame& f, const Lod& lod, const BvhNode& node, Vec3f eye) {
+  if constexpr (std::is_same_v<Lod, NoLod>) {
+    return false;
+  } else {
+    const auto index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
+    return !node.is_leaf() || lod.stops_at(index, node, eye);
+  }
+}
+
 }  // namespace tetray::render

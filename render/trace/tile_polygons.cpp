@@ -218,7 +218,6 @@ void TilePolygons::add(const TilePolygon& p) {
 void TilePolygons::copy_to_other_bins(const TilePolygon& p) {
   const int first_y = p.first_row >> packet_shift_, last_y = p.last_row >> packet_shift_;
   const int first_x = p.first_column >> packet_shift_, last_x = p.last_column >> packet_shift_;
-  if (first_y == last_y && first_x == last_x) return;
   for (int y = first_y; y <= last_y; ++y)
     for (int x = first_x; x <= last_x; ++x)
       if (y != first_y || x != first_x)
@@ -259,11 +258,10 @@ int set_up_polygons(const TetVolume& volume, const TetBatch& batch, Mask live, f
   Floats f[TilePolygons::kFloats];
   Ints n[TilePolygons::kInts];
   const float eye[3] = {tile.eye.x, tile.eye.y, tile.eye.z};
-  for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 4; ++k) f[TilePolygons::kRel + 4 * c + k] = xyz[c][k] - Floats(eye[c]);
   Floats rel[3][4];
   for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 4; ++k) rel[c][k] = f[TilePolygons::kRel + 4 * c + k];
+    for (int k = 0; k < 4; ++k)
+      f[TilePolygons::kRel + 4 * c + k] = rel[c][k] = xyz[c][k] - Floats(eye[c]);
   live = live & !outside_frustum(rel, tile.frustum) & lanewise_planes(xyz, tile.eye, f) &
          covered_tile_pixels(tile, f, n);
   if (!xsimd::any(live)) return extracted;

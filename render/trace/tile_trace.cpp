@@ -11,6 +11,7 @@
 #include "render/trace/layer_peeling.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/packet_traversal.hpp"
+#include "render/trace/proxy_intersect.hpp"
 #include "render/trace/tet_straddle.hpp"
 #include "render/trace/tile_polygons.hpp"
 
@@ -41,36 +42,26 @@ void set_up_tets(const Frame& f, const Tile& tile, const std::uint32_t* tets, in
   }
 }
 
-// Sets up the proxy isopolygons of a node the level of detail stopped at (intersect_proxy's, one
-// by one): a hit keeps the tet id of the node's first tet as its tie key, and that tet for
-// shading.
+// Sets up the proxy isopolygons of a node the level of detail stopped at (for_each_proxy, the
+// packets' own, each set up on its own).
 template <bool kStats>
 void set_up_proxy(const Frame& f, const Tile& tile, const BvhNode& node, TilePolygons& polygons,
                   TraceStats& stats) {
-  const NodePlane& plane = f.lod.planes[static_cast<std::size_t>(&node - f.bvh.nodes.data())];
-  const BvhNode* leaf = &node;
-  while (!leaf->is_leaf()) leaf = &f.bvh.nodes[leaf->first];
-  const auto tet = static_cast<std::int32_t>(leaf->first);
-  for (int k = 0; k < f.isos.count; ++k) {
-    const float iso = f.isos.values[k];
-    if (!(node.bounds.lo[3] < iso && iso <= node.bounds.hi[3])) continue;
-    Isopolygon proxies[2];
-    const int count = proxy_isopolygons(node.bounds, plane, iso, proxies);
-    for (int j = 0; j < count; ++j) {
-      if constexpr (kStats) ++stats.isopolygon_extractions;
-      TilePolygon p;
-      CoveredPixels covered;
-      if (!set_up_polygon(proxies[j], tile.eye, &tile.frustum, tile.projection, tile.last_row,
-                          tile.last_column, true, p.setup, covered))
-        continue;
-      p.id = {f.volume.tet_ids[static_cast<std::size_t>(tet)], tet, k};
-      p.first_row = static_cast<std::int16_t>(covered.first_row);
-      p.last_row = static_cast<std::int16_t>(covered.last_row);
-      p.first_column = static_cast<std::int16_t>(covered.first_column);
-      p.last_column = static_cast<std::int16_t>(covered.last_column);
-      polygons.add(p);
-    }
-  }
+  for_each_proxy(f.volume, f.bvh, f.lod, f.isos, node,
+                 [&](const Isopolygon& proxy, const PolygonHit& id) {
+                   if constexpr (kStats) ++stats.isopolygon_extractions;
+                   TilePolygon p;
+                   CoveredPixels covered;
+                   if (!set_up_polygon(proxy, tile.eye, &tile.frustum, tile.projection,
+                                       tile.last_row, tile.last_column, true, p.setup, covered))
+                     return;
+                   p.id = id;
+                   p.first_row = static_cast<std::int16_t>(covered.first_row);
+                   p.last_row = static_cast<std::int16_t>(covered.last_row);
+                   p.first_column = static_cast<std::int16_t>(covered.first_column);
+                   p.last_column = static_cast<std::int16_t>(covered.last_column);
+                   polygons.add(p);
+                 });
 }
 
 // Queues the leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V) and sets up each
@@ -102,12 +93,7 @@ void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceSta
       f.bvh, f.isos, tile, stats, ClipNodes<kClip>(f.clip), lod);
   scratch.pending_count = 0;
   traversal.run([&](const BvhNode& node, int) {
-    bool proxy = false;
-    if constexpr (kLod) {
-      const auto index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
-      proxy = !node.is_leaf() || lod.stops_at(index, node, tile.eye);
-    }
-    if (proxy) {
+    if (gives_proxy(f, lod, node, tile.eye)) {
       set_up_proxy<kStats>(f, tile, node, scratch.polygons, stats);
     } else {
       set_up_leaf<kStats>(f, tile, node, scratch, stats);

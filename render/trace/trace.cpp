@@ -63,15 +63,10 @@ void trace_rays(const Frame& f, RayPacket<S>& packet, TraceStats& stats, NodeFil
       f.bvh, f.isos, packet, stats, node_filter, lod);
   IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
   traversal.run([&](const BvhNode& node, int first_active) {
-    // Without level of detail every node the traversal hands over is a leaf: no test at all.
-    bool proxy = false;
-    if constexpr (kLod) {
-      const std::uint32_t index = static_cast<std::uint32_t>(&node - f.bvh.nodes.data());
-      proxy = !node.is_leaf() || lod.stops_at(index, node, packet.eye);
-    }
-    if (proxy ? intersect_proxy(f.volume, f.bvh, f.lod, f.isos, node, first_active, intersector)
-              : intersect_leaf<S, kStats>(f.volume, f.isos, node, first_active, intersector, packet,
-                                          stats))
+    if (gives_proxy(f, lod, node, packet.eye)
+            ? intersect_proxy(f.volume, f.bvh, f.lod, f.isos, node, first_active, intersector)
+            : intersect_leaf<S, kStats>(f.volume, f.isos, node, first_active, intersector, packet,
+                                        stats))
       update_tmax_bound(packet);
   });
 }
