@@ -161,6 +161,8 @@ Tile make_tile(const Camera& camera, const CameraFrame& frame, Vec3d origin, flo
                int x0, int y0, int size) {
   Tile tile;
   tile.eye = static_cast<Vec3f>(frame.eye - origin);
+  tile.x0 = x0;
+  tile.y0 = y0;
   tile.last_row = std::min(size, camera.height - y0) - 1;
   tile.last_column = std::min(size, camera.width - x0) - 1;
   tile.frustum = make_packet_frustum(camera, frame, x0, y0, x0 + tile.last_column,
@@ -177,8 +179,12 @@ void TilePolygons::reset(int packets_across, int packets_down, int packet_size) 
   across_ = packets_across;
   packet_shift_ = std::countr_zero(static_cast<unsigned>(packet_size));
   bins_.resize(std::max(bins_.size(), static_cast<std::size_t>(packets_across * packets_down)));
-  for (std::vector<TilePolygon>& bin : bins_) bin.clear();
+  empty_bins();
   added_ = 0;
+}
+
+void TilePolygons::empty_bins() {
+  for (std::vector<TilePolygon>& bin : bins_) bin.clear();
 }
 
 void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts], Mask valid) {

@@ -15,6 +15,7 @@
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/packet_frustum.hpp"
 #include "render/trace/ray_packet.hpp"
+#include "render/trace/tile_occlusion.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
@@ -26,13 +27,16 @@ struct Tile {
   Vec3f eye;                 // local
   PacketFrustum frustum;     // of the tile's pixels in the image
   RowProjection projection;  // onto the tile's pixels: its top-left pixel is row 0, column 0
+  int x0 = 0, y0 = 0;        // its top-left pixel in the image
   int last_row = 0, last_column = 0;  // of the tile's part in the image
   Vec3f center_direction;             // through the tile's center: front-to-back order
+  TileOcclusion occlusion;            // what its packets' hits so far hide
 
-  // No ray of the tile can meet the box.
+  // No ray of the tile can meet the box, or none can find a nearer hit in it.
   bool misses(const Bounds4& b) const {
-    return frustum.misses_box({b.lo[0] - eye.x, b.lo[1] - eye.y, b.lo[2] - eye.z},
-                              {b.hi[0] - eye.x, b.hi[1] - eye.y, b.hi[2] - eye.z});
+    const Vec3f lo{b.lo[0] - eye.x, b.lo[1] - eye.y, b.lo[2] - eye.z};
+    const Vec3f hi{b.hi[0] - eye.x, b.hi[1] - eye.y, b.hi[2] - eye.z};
+    return frustum.misses_box(lo, hi) || occlusion.hides(lo, hi, projection, last_row, last_column);
   }
 };
 
@@ -69,6 +73,8 @@ class TilePolygons {
            simd::Mask valid);
   // Adds one polygon so (a level-of-detail proxy's, set up on its own).
   void add(const TilePolygon& polygon);
+  // Empties the bins, their polygons tested, keeping the count of polygons added to the tile.
+  void empty_bins();
 
   const std::vector<TilePolygon>& bin(int packet_x, int packet_y) const {
     return bins_[static_cast<std::size_t>(packet_y * across_ + packet_x)];

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <memory>
 #include <type_traits>
 
 #include "render/trace/isopolygon_intersect.hpp"
@@ -21,11 +22,24 @@ namespace {
 constexpr int kPackets = kTileSize / kTilePacket;  // packets a side of a tile
 constexpr int W = simd::kWidth;
 
-// What a thread keeps from tile to tile: the bins, grown to the largest tile's.
+constexpr int kTilePackets = kPackets * kPackets;
+static_assert(kTilePackets <= TileOcclusion::kMaxPackets);
+
+// Polygons binned since the packets last tested their bins, past which they test them again
+// (occlusion culling, tile_occlusion.hpp). Lower finds the front surface's bound sooner but
+// tests more often a packet that still has rays without hits.
+constexpr std::uint64_t kPolygonsPerTest = 256;
+
+// What a thread keeps from tile to tile: the bins, grown to the largest tile's, and the tile's
+// packets, which keep their hits from one test of their bins to the next.
 struct TileScratch {
   TilePolygons polygons;
   std::uint32_t pending[2 * W];  // straddling tets not yet set up
   int pending_count = 0;
+  std::uint64_t polygons_tested = 0;  // of polygons_added(), those the packets have tested
+  std::unique_ptr<RayPacket<kTilePacket>[]> packets =
+      std::make_unique<RayPacket<kTilePacket>[]>(kTilePackets);
+  bool set_up[kTilePackets] = {};  // packet k's rays are set up (its bin has had a polygon)
 };
 
 // Sets up the polygons of `count` tets of every isovalue.
@@ -84,8 +98,66 @@ void set_up_leaf(const Frame& f, const Tile& tile, const BvhNode& leaf, TileScra
   }
 }
 
+// Calls visit(k, row, column) for each packet of the tile in the image: k its index, (row,
+// column) its top-left pixel in the tile.
+template <typename Visit>
+void for_each_packet(const Tile& tile, Visit&& visit) {
+  for (int row = 0; row <= tile.last_row; row += kTilePacket)
+    for (int column = 0; column <= tile.last_column; column += kTilePacket)
+      visit(row / kTilePacket * kPackets + column / kTilePacket, row, column);
+}
+
+// Packet k's rays, set up the first time its bin has polygons; from then on the tile's occlusion
+// culling reads their bounds.
+RayPacket<kTilePacket>& packet_rays(const Frame& f, Tile& tile, TileScratch& scratch, int k,
+                                    int row, int column) {
+  constexpr int S = kTilePacket;
+  RayPacket<S>& packet = scratch.packets[static_cast<std::size_t>(k)];
+  if (!scratch.set_up[k]) {
+    const int x = tile.x0 + column, y = tile.y0 + row;
+    setup_packet<S, false>(packet, f.camera, f.view, f.directions, f.volume.origin,
+                           tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x, y),
+                           f.extent.magnitude, x, y);
+    scratch.set_up[k] = true;
+    tile.occlusion.watch(k, packet.batch_far, kPackets);
+  }
+  return packet;
+}
+
+// Tests the packet's rays against its bin (the polygons of the packet at row, column of its
+// tile), with a hit filter: the clip region's, or a layer's.
+template <bool kStats, typename HitFilter>
+void test_bin(const std::vector<TilePolygon>& bin, RayPacket<kTilePacket>& packet, int row,
+              int column, HitFilter hit_filter, TraceStats& stats) {
+  constexpr int S = kTilePacket;
+  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
+  for (const TilePolygon& p : bin)
+    intersector.intersect_rays(
+        p.setup, p.id, 0,
+        {std::max<int>(p.first_row - row, 0), std::min<int>(p.last_row - row, S - 1),
+         std::max<int>(p.first_column - column, 0), std::min<int>(p.last_column - column, S - 1)});
+}
+
+// The packets test the polygons binned since their last test, and those whose every ray now
+// has a hit bound what the rest of the traversal can add (tile_occlusion.hpp).
+template <bool kStats, bool kClip>
+void test_bins(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& stats) {
+  for_each_packet(tile, [&](int k, int row, int column) {
+    const std::vector<TilePolygon>& bin =
+        scratch.polygons.bin(column / kTilePacket, row / kTilePacket);
+    if (bin.empty()) return;
+    RayPacket<kTilePacket>& packet = packet_rays(f, tile, scratch, k, row, column);
+    test_bin<kStats>(bin, packet, row, column, ClipHits<kClip>(f.clip), stats);
+    tile.occlusion.note(k, RayPacket<kTilePacket>::kBatches);
+  });
+  scratch.polygons.empty_bins();
+  scratch.polygons_tested = scratch.polygons.polygons_added();
+}
+
 // The tile's traversal, with the scene's clip region and level of detail: a leaf gives its tets'
-// polygons, a node the level of detail stopped at (or a leaf narrow enough) its proxies.
+// polygons, a node the level of detail stopped at (or a leaf narrow enough) its proxies. Every
+// kPolygonsPerTest polygons the packets test their bins, and what their hits hide is skipped
+// from then on; a frame of transparent layers keeps every polygon in its bins for the layers.
 template <bool kStats, bool kClip, bool kLod>
 void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& stats) {
   const auto lod = lod_policy<kLod>(f);
@@ -98,46 +170,36 @@ void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceSta
     } else {
       set_up_leaf<kStats>(f, tile, node, scratch, stats);
     }
+    if (!f.layers &&
+        scratch.polygons.polygons_added() - scratch.polygons_tested >= kPolygonsPerTest)
+      test_bins<kStats, kClip>(f, tile, scratch, stats);
   });
   if (scratch.pending_count > 0)
     set_up_tets<kStats>(f, tile, scratch.pending, scratch.pending_count, scratch.polygons, stats);
 }
 
-// Tests the packet's rays against its bin (the polygons of the packet at tile_row, tile_column
-// of its tile), with a hit filter: the clip region's, or a layer's.
-template <bool kStats, typename HitFilter>
-void test_bin(const std::vector<TilePolygon>& bin, RayPacket<kTilePacket>& packet, int tile_row,
-              int tile_column, HitFilter hit_filter, TraceStats& stats) {
-  constexpr int S = kTilePacket;
-  IsopolygonIntersector<S, kStats, HitFilter> intersector(packet, stats, hit_filter);
-  for (const TilePolygon& p : bin)
-    intersector.intersect_rays(
-        p.setup, p.id, 0,
-        {std::max<int>(p.first_row - tile_row, 0), std::min<int>(p.last_row - tile_row, S - 1),
-         std::max<int>(p.first_column - tile_column, 0),
-         std::min<int>(p.last_column - tile_column, S - 1)});
-}
-
-// The packet at (x0, y0) of the image tests its rays against its bin and writes its pixels, or,
-// in a frame of transparent layers, peels them by testing the bin again for each.
+// Each packet tests what is left in its bin and writes its pixels, or, in a frame of transparent
+// layers, peels them by testing the bin again for each; a packet that never had a polygon
+// writes the background.
 template <bool kStats, bool kClip>
-void trace_packet(const Frame& f, const std::vector<TilePolygon>& bin, int x0, int y0, int tile_row,
-                  int tile_column, Framebuffer& image, TraceStats& stats) {
+void finish_packets(const Frame& f, Tile& tile, TileScratch& scratch, Framebuffer& image,
+                    TraceStats& stats) {
   constexpr int S = kTilePacket;
-  if (bin.empty()) {
-    if (f.layers) return;  // no layers: the slots' counts are zero
-    return write_background<S, kStats>(f, x0, y0, image, stats);
-  }
-  RayPacket<S> packet;
-  const PacketFrustum frustum = tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x0, y0);
-  setup_packet<S, false>(packet, f.camera, f.view, f.directions, f.volume.origin, frustum,
-                         f.extent.magnitude, x0, y0);
-  test_bin<kStats>(bin, packet, tile_row, tile_column, ClipHits<kClip>(f.clip), stats);
-  if (f.layers)
-    return peel_layers<S, kStats, kClip>(f, packet, x0, y0, stats, [&](auto, auto hits) {
-      test_bin<kStats>(bin, packet, tile_row, tile_column, hits, stats);
-    });
-  write_pixels<S, kStats>(f, packet, x0, y0, image, stats);
+  for_each_packet(tile, [&](int k, int row, int column) {
+    const std::vector<TilePolygon>& bin = scratch.polygons.bin(column / S, row / S);
+    const int x = tile.x0 + column, y = tile.y0 + row;
+    if (!scratch.set_up[k] && bin.empty()) {
+      if (!f.layers) write_background<S, kStats>(f, x, y, image, stats);
+      return;  // with layers, the slots' counts are zero
+    }
+    RayPacket<S>& packet = packet_rays(f, tile, scratch, k, row, column);
+    test_bin<kStats>(bin, packet, row, column, ClipHits<kClip>(f.clip), stats);
+    if (f.layers)
+      return peel_layers<S, kStats, kClip>(f, packet, x, y, stats, [&](auto, auto hits) {
+        test_bin<kStats>(bin, packet, row, column, hits, stats);
+      });
+    write_pixels<S, kStats>(f, packet, x, y, image, stats);
+  });
 }
 
 template <bool kStats, bool kClip, bool kLod>
@@ -145,16 +207,17 @@ void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch&
                 TraceStats& stats) {
   Tile tile = make_tile(f.camera, f.view, f.volume.origin, f.extent.magnitude, x0, y0, kTileSize);
   scratch.polygons.reset(kPackets, kPackets, kTilePacket);
+  scratch.polygons_tested = 0;
+  std::fill(std::begin(scratch.set_up), std::end(scratch.set_up), false);
   const std::uint64_t extracted_before = stats.isopolygon_extractions;
-  if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi))
+  if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi)) {
+    tile.occlusion.reset<kTilePacket>(tile.projection.depth_slack);
     collect_polygons<kStats, kClip, kLod>(f, tile, scratch, stats);
+  }
   if constexpr (kStats)  // polygons beside the tile's pixels
     stats.frustum_culled_isopolygons +=
         stats.isopolygon_extractions - extracted_before - scratch.polygons.polygons_added();
-  for (int py = 0; py <= tile.last_row; py += kTilePacket)
-    for (int px = 0; px <= tile.last_column; px += kTilePacket)
-      trace_packet<kStats, kClip>(f, scratch.polygons.bin(px / kTilePacket, py / kTilePacket),
-                                  x0 + px, y0 + py, py, px, image, stats);
+  finish_packets<kStats, kClip>(f, tile, scratch, image, stats);
 }
 
 template <bool kStats, bool kClip, bool kLod>
