@@ -28,6 +28,13 @@ namespace {
 
 Status invalid(std::string message) { return {StatusCode::invalid_argument, std::move(message)}; }
 
+// Whether a scene of volume v has the property `of` (of its config::Scene).
+template <typename Scenes, typename Property>
+bool any_scene_of(const Scenes& scenes, std::size_t v, Property of) {
+  return std::any_of(scenes.begin(), scenes.end(),
+                     [&](const auto& s) { return s.volume == v && of(s.config); });
+}
+
 // A check that failed only for non-finite field values: the field is unusable, the mesh is not,
 // so only the scenes reading that field are skipped.
 bool field_fault(const render::MeshCheck& found) {
@@ -387,9 +394,13 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     policy.vertex_gradients = smooth && comm_.size == 1;
     if (smooth)
       gradient_changes_[v] = volume.needs_load(epochs_) ? kGradientsLoaded : kGradientsUpdated;
-    policy.node_planes = std::any_of(scenes_.begin(), scenes_.end(), [&](const auto& s) {
-      return s.volume == v && s.config.lod_node_pixels > 0;
-    });
+    policy.node_planes =
+        any_scene_of(scenes_, v, [](const config::Scene& c) { return c.lod_node_pixels > 0; });
+    // A cap locates a point per pixel in the leaves: smaller ones, unless the config says.
+    const bool caps = any_scene_of(
+        scenes_, v, [](const config::Scene& c) { return !c.shading.cap.field.empty(); });
+    if (caps && !config_.bvh_leaf_size_given)
+      policy.build.leaf_size = render::kPointLocationLeafSize;
     const render::UpdateResult result = volume.update(inputs, epochs_, policy, origin_);
     walks_[v].after_update(volume.volume(), result.kind);
     first->record.bvh_ms = watch.ms();
@@ -401,8 +412,7 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
 }
 
 bool Adaptor::Impl::smooth_volume(std::size_t v) const {
-  return std::any_of(scenes_.begin(), scenes_.end(),
-                     [&](const SceneState& s) { return s.volume == v && s.config.shading.smooth; });
+  return any_scene_of(scenes_, v, [](const config::Scene& c) { return c.shading.smooth; });
 }
 
 // A rank whose tets share a vertex with another rank's sees only its own tets there, so the

@@ -134,6 +134,7 @@ struct Config {
   Output output{};
   std::vector<Scene> scenes;
   render::UpdatePolicy bvh{};
+  bool bvh_leaf_size_given = false;  // else each volume's leaves follow its scenes (adaptor_impl)
   render::NonFinitePolicy nonfinite = render::NonFinitePolicy::error;
   int threads = 0;  // the renderer's threads on each rank; 0: default_thread_count()
   std::vector<ProbeSet> probes;

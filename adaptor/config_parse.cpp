@@ -357,7 +357,10 @@ Config parse_root(const YamlReader& r, const YAML::Node& root, const std::string
   if (root["output"]) config.output = parse_output(r, root["output"], rank_count);
   const Trigger default_trigger =
       root["trigger"] ? parse_trigger(r, root["trigger"], "trigger") : Trigger{};
-  if (root["bvh"]) config.bvh = parse_bvh(r, root["bvh"]);
+  if (root["bvh"]) {
+    config.bvh = parse_bvh(r, root["bvh"]);
+    config.bvh_leaf_size_given = static_cast<bool>(root["bvh"]["leaf_size"]);
+  }
   if (root["threads"]) {
     config.threads = static_cast<int>(r.integer_in(root["threads"], "threads", 1, kMaxThreads));
   }

@@ -53,6 +53,7 @@ TEST(Config, ReadsEveryKey) {
   EXPECT_EQ(c.nonfinite, render::NonFinitePolicy::skip_tets);
   EXPECT_EQ(c.bvh.build.builder, render::BvhBuilder::sah);
   EXPECT_EQ(c.bvh.build.leaf_size, 4);
+  EXPECT_TRUE(c.bvh_leaf_size_given);
   EXPECT_EQ(c.bvh.rebuild_ratio, 2.5);
   ASSERT_EQ(c.scenes.size(), 2u);
   const Scene& a = c.scenes[0];
@@ -89,6 +90,9 @@ TEST(Config, DefaultsNeedOnlyNameFieldIsovalues) {
   EXPECT_EQ(r.config->output.writer_rank, 0);
   EXPECT_FALSE(r.config->output.per_rank_images);
   EXPECT_TRUE(s.color_by.empty());
+  // Leaves unset: the adaptor chooses per volume (64, or 16 under a clip cap).
+  EXPECT_FALSE(r.config->bvh_leaf_size_given);
+  EXPECT_EQ(r.config->bvh.build.leaf_size, 64);
 }
 
 TEST(Config, WriterRankMustBeARankOfTheCommunicator) {

@@ -27,7 +27,9 @@ render::TraceOptions with_plane_facing(const render::Camera& camera) {
 CapFigures measure_cap(const GyroidTwist& scene, const render::Camera& camera) {
   render::TetVolume volume;
   render::Bvh bvh;
-  load_scene(scene, volume, bvh, {});
+  render::UpdatePolicy policy;  // the adaptor's leaves for a volume with a cap
+  policy.build.leaf_size = render::kPointLocationLeafSize;
+  load_scene(scene, volume, bvh, policy);
   std::vector<float> field;
   render::load_vertex_field(
       volume, {scene.field.data(), render::ScalarKind::f64, scene.field.size()}, field);

@@ -182,10 +182,14 @@ TEST(LevelOfDetail, ThresholdFarBelowTheNodesGivesTheExactImage) {
   EXPECT_EQ(exact.hit, lod.hit);
 }
 
+// Leaves of 16 tets: on this small mesh, leaves of the default 64 already project to about the
+// threshold, so the proxies would stand in for leaves rather than for subtrees.
 TEST(LevelOfDetail, PlanarSurfaceDrawnByProxiesWithFarLessTraversal) {
   const BoxMesh box = jittered_box(24);
   const auto f = sample_field(box.points, [](Vec3d p) { return p.x + 0.3 * p.y - 0.2 * p.z; });
-  const RenderScene scene = load_scene(box.points, box.tets, f);
+  render::UpdatePolicy leaves_of_16;
+  leaves_of_16.build.leaf_size = 16;
+  const RenderScene scene = load_scene(box.points, box.tets, f, leaves_of_16);
   const auto surfaces = make_surfaces(std::vector<double>{0.1});
   const std::vector<NodePlane> planes = planes_of(scene);
   const render::Camera camera =
