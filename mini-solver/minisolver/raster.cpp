@@ -93,6 +93,32 @@ int Raster::text_width(const std::string& s, int scale) {
   return s.empty() ? 0 : (4 * static_cast<int>(s.size()) - 1) * scale;
 }
 
+namespace {
+
+// Writes 8-bit RGB rows with libpng, which reports errors by longjmp back to the setjmp here:
+// this frame holds nothing a longjmp could leave half-made (C++ objects built after setjmp
+// returned a second time would be; GCC warns of them at -O1).
+bool write_rgb_png(std::FILE* file, int width, int height, const std::uint8_t* rgb) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; ++y)
+    png_write_row(png, rgb + 3 * static_cast<std::size_t>(y) * width);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+}  // namespace
+
 bool Raster::write_png(const std::string& path, std::string& error) const {
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"),
                                                              &std::fclose);
@@ -100,22 +126,10 @@ bool Raster::write_png(const std::string& path, std::string& error) const {
     error = "cannot open " + path + " for writing";
     return false;
   }
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
+  if (!write_rgb_png(file.get(), width_, height_, pixels_.data())) {
     error = "libpng failed writing " + path;
     return false;
   }
-  png_init_io(png, file.get());
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width_), static_cast<png_uint_32>(height_), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height_; ++y)
-    png_write_row(png, pixels_.data() + 3 * static_cast<std::size_t>(y) * width_);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
   return true;
 }
 
