@@ -108,6 +108,31 @@ TEST(AdaptorStep, ScenesSkipWhatTheyDoNotNeed) {
   expect_plane_hits(cell(log, 1, "hits"));
 }
 
+// The BVH's leaves follow what the field's scenes need: 64 tets by default, 16 where a scene
+// draws a clip cap (which locates points per pixel in the leaves), and what the config says
+// wherever it says. Seen through the log's bvh_bytes: the same leaves give the same bytes.
+TEST(AdaptorStep, ACappedFieldGetsSmallLeavesUnlessTheConfigSetsThem) {
+  ScratchDir dir;
+  const PlaneScene scene = make_plane_scene(12);
+  const std::string cap =
+      "    clip: {planes: [{point: [0, 0, 0.6], normal: [0, 0, 1]}], "
+      "cap: {field: g}}\n";
+  const auto bvh_bytes = [&](const std::string& name, const std::string& top_lines,
+                             const std::string& scene_lines) {
+    auto a = make_adaptor(plane_config(dir / name, "", top_lines, scene_lines));
+    EXPECT_TRUE(a);
+    if (!a) return std::string();
+    EXPECT_TRUE(run_plane_step(*a, scene, 0).ok());
+    EXPECT_TRUE(a->finalize().ok());
+    return cell(read_csv(dir / (name + "/tetray_log.csv")), 1, "bvh_bytes");
+  };
+  const std::string leaves_64 = "bvh: {leaf_size: 64}\n", leaves_16 = "bvh: {leaf_size: 16}\n";
+  EXPECT_EQ(bvh_bytes("plain", "", ""), bvh_bytes("plain_64", leaves_64, ""));
+  const std::string capped = bvh_bytes("capped", "", cap);
+  EXPECT_EQ(capped, bvh_bytes("capped_16", leaves_16, cap));
+  EXPECT_GT(std::stoull(capped), std::stoull(bvh_bytes("capped_64", leaves_64, cap)));
+}
+
 TEST(AdaptorStep, ChangesOnOffTriggerStepsAreNotLost) {
   ScratchDir dir;
   PlaneScene scene = make_plane_scene(4);
