@@ -42,14 +42,20 @@ class TileOcclusion {
   // blocks' bounds are read from `block_far` from now on.
   void watch(int k, const float* block_far, int packets_across) {
     block_far_[k] = block_far;
+    packet_far_[k] = kUnknown;
     packets_across_ = packets_across;
   }
 
-  // Packet k's blocks' bounds (`blocks` of them) have changed: the nearest of all is kept for a
-  // quick answer about boxes in front of every bound.
+  // Packet k's blocks' bounds (`blocks` of them) have changed (a packet's bounds only fall, as
+  // its rays find nearer hits): the nearest of all blocks, for a quick answer about boxes in
+  // front of every bound, and the packet's farthest, for one about boxes behind all of it.
   void note(int k, int blocks) {
-    for (int b = 0; b < blocks; ++b)
+    float farthest = -kUnknown;
+    for (int b = 0; b < blocks; ++b) {
       if (block_far_[k][b] > -kUnknown) nearest_far_ = std::min(nearest_far_, block_far_[k][b]);
+      farthest = std::max(farthest, block_far_[k][b]);
+    }
+    packet_far_[k] = farthest;
   }
 
   // Whether no ray of the tile can find a nearer hit in the box (relative to the eye): it lies
@@ -128,8 +134,10 @@ class TileOcclusion {
 
   // Whether every block of packet (pr, pc) within r has a bound nearer than `reach`.
   bool hidden_in_packet(int pr, int pc, const PixelRect& r, float reach) const {
-    const float* far = block_far_[pr * packets_across_ + pc];
-    if (!far) return false;  // not set up: its rays have no hits yet
+    const int k = pr * packets_across_ + pc;
+    const float* far = block_far_[k];
+    if (!far) return false;                   // not set up: its rays have no hits yet
+    if (packet_far_[k] < reach) return true;  // behind every block of the packet
     const int row0 = pr * packet_size_, column0 = pc * packet_size_;
     const int first_row = std::max(r.first_row - row0, 0) / block_rows_;
     const int last_row = std::min(r.last_row - row0, packet_size_ - 1) / block_rows_;
@@ -142,6 +150,7 @@ class TileOcclusion {
   }
 
   const float* block_far_[kMaxPackets] = {};  // per packet, null until set up
+  float packet_far_[kMaxPackets] = {};        // per packet, its blocks' farthest bound at note()
   int packet_size_ = 1, packets_across_ = 1;
   int block_rows_ = 1, block_columns_ = 1, blocks_across_ = 1;
   float slack_ = 0;

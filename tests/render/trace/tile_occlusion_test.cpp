@@ -65,6 +65,7 @@ TEST(TileOcclusion, ABlockWithoutAHitKeepsTheBoxesOverItVisible) {
   tile.bound_all(5.0f);
   // The pixel at the tile's centre and the blocks around it: packet 3 (bottom right), block 0.
   tile.block_far[3 * Packet::kBatches] = kInf;
+  tile.occlusion.note(3, Packet::kBatches);
   EXPECT_FALSE(tile.hides(10));            // covers the centre
   EXPECT_TRUE(tile.hides(10, 0.05f, -2));  // off to the left, over other blocks only
   // A block of packet 0 far nearer than the rest does not hide what lies in front of the others.
