@@ -111,12 +111,13 @@ TEST(AdaptorStep, ScenesSkipWhatTheyDoNotNeed) {
 // The BVH's leaves follow what the field's scenes need: 64 tets by default, 16 where a scene
 // draws a clip cap (which locates points per pixel in the leaves), and what the config says
 // wherever it says. Seen through the log's bvh_bytes: the same leaves give the same bytes.
+constexpr const char* kCappedClip =
+    "    clip: {planes: [{point: [0, 0, 0.6], normal: [0, 0, 1]}], cap: {field: g}}\n";
+
 TEST(AdaptorStep, ACappedFieldGetsSmallLeavesUnlessTheConfigSetsThem) {
   ScratchDir dir;
   const PlaneScene scene = make_plane_scene(12);
-  const std::string cap =
-      "    clip: {planes: [{point: [0, 0, 0.6], normal: [0, 0, 1]}], "
-      "cap: {field: g}}\n";
+  const std::string cap = kCappedClip;
   const auto bvh_bytes = [&](const std::string& name, const std::string& top_lines,
                              const std::string& scene_lines) {
     auto a = make_adaptor(plane_config(dir / name, "", top_lines, scene_lines));
