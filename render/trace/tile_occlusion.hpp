@@ -23,13 +23,14 @@ class TileOcclusion {
  public:
   static constexpr int kMaxPackets = 16;
 
-  // A tile of packets of S x S rays (up to kMaxPackets of them), none set up yet: nothing hidden.
-  // `slack` bounds the rounding of a distance from eye-relative floats (the frame's
-  // depth_rounding).
+  // A tile of packets of S x S rays, packets_across a row (up to kMaxPackets of them), none set
+  // up yet: nothing hidden. `slack` bounds the rounding of a distance from eye-relative floats
+  // (the frame's depth_rounding).
   template <int S>
-  void reset(float slack) {
+  void reset(float slack, int packets_across) {
     using Packet = RayPacket<S>;
     packet_size_ = S;
+    packets_across_ = packets_across;
     block_rows_ = Packet::kBlockRows;
     block_columns_ = Packet::kBlockColumns;
     blocks_across_ = S / Packet::kBlockColumns;
@@ -38,12 +39,11 @@ class TileOcclusion {
     nearest_far_ = kUnknown;
   }
 
-  // Packet k (row-major among the tile's packets, packets_across a row) has its rays set up; its
-  // blocks' bounds are read from `block_far` from now on.
-  void watch(int k, const float* block_far, int packets_across) {
+  // Packet k (row-major among the tile's packets) has its rays set up; its blocks' bounds are
+  // read from `block_far` from now on.
+  void watch(int k, const float* block_far) {
     block_far_[k] = block_far;
     packet_far_[k] = kUnknown;
-    packets_across_ = packets_across;
   }
 
   // Packet k's blocks' bounds (`blocks` of them) have changed (a packet's bounds only fall, as

@@ -119,7 +119,7 @@ RayPacket<kTilePacket>& packet_rays(const Frame& f, Tile& tile, TileScratch& scr
                            tile_frustum<S>(f.camera, f.view, f.extent.magnitude, x, y),
                            f.extent.magnitude, x, y);
     scratch.set_up[k] = true;
-    tile.occlusion.watch(k, packet.batch_far, kPackets);
+    tile.occlusion.watch(k, packet.batch_far);
   }
   return packet;
 }
@@ -211,7 +211,7 @@ void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch&
   std::fill(std::begin(scratch.set_up), std::end(scratch.set_up), false);
   const std::uint64_t extracted_before = stats.isopolygon_extractions;
   if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi)) {
-    tile.occlusion.reset<kTilePacket>(tile.projection.depth_slack);
+    tile.occlusion.reset<kTilePacket>(tile.projection.depth_slack, kPackets);
     collect_polygons<kStats, kClip, kLod>(f, tile, scratch, stats);
   }
   if constexpr (kStats)  // polygons beside the tile's pixels

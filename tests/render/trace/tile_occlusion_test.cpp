@@ -29,8 +29,8 @@ struct OneTile {
   render::TileOcclusion occlusion;
 
   OneTile() {
-    occlusion.reset<S>(projection.depth_slack);
-    for (int k = 0; k < 4; ++k) occlusion.watch(k, block_far.data() + k * Packet::kBatches, 2);
+    occlusion.reset<S>(projection.depth_slack, 2);
+    for (int k = 0; k < 4; ++k) occlusion.watch(k, block_far.data() + k * Packet::kBatches);
   }
   // Every block has all its hits, the farthest at `far`.
   void bound_all(float far) {
