@@ -47,6 +47,11 @@ struct Frame {
   LevelOfDetail lod{};                               // used when enabled
   float footprint_per_distance = 0;                  // a pixel's width at unit distance
   LayerSlots* layers = nullptr;  // trace_layers' output; null: trace_into's image
+  // Without a colormap, the color of each isovalue (sorted order) at k + 1, alpha 1, and zero at
+  // 0 for rays without a hit (isovalue index -1): pixels are then composed from the table, with
+  // no per-pixel branch or look-up through the surfaces (write_pixels).
+  bool surface_colors = false;
+  alignas(16) float iso_rgba[kMaxIsovalues + 1][4] = {};
 };
 
 // One packet row's pixels, composed in the cache and then written to the frame in one go.
@@ -131,6 +136,8 @@ void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuf
   if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
   light_and_depth(f.shade, hits, light, depth);
   if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
+  alignas(16) static constexpr float kAlphaLane[4] = {0, 0, 0, 1};
+  const simd::Mask4 alpha = simd::Float4::load_aligned(kAlphaLane) != simd::Float4(0.0f);
   write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
     constexpr float kInf = std::numeric_limits<float>::infinity();
     for (int c = 0; c < columns; ++c) {
@@ -138,14 +145,19 @@ void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuf
       const bool hit = packet.tet[r] >= 0;
       out.depth[c] = hit ? depth[r] : kInf;
       out.hit[c] = hit ? packet.key[r] : kNoHit;
+      if constexpr (kStats) stats.hits += hit;
       float* rgba = &out.rgba[4 * c];
-      if (!hit) {
+      if (f.surface_colors) {
+        // The table's color times the light, its alpha as it is: what shade_color forms.
+        const simd::Float4 color = simd::Float4::load_aligned(f.iso_rgba[packet.iso[r] + 1]);
+        const simd::Float4 lit_color = color * simd::Float4(hit ? light[r] : 0.0f);
+        xsimd::select(alpha, color, lit_color).store_aligned(rgba);
+      } else if (hit) {
+        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
+                    packet.tet[r], packet.iso[r], light[r], rgba);
+      } else {
         std::fill_n(rgba, 4, 0.0f);
-        continue;
       }
-      if constexpr (kStats) ++stats.hits;
-      shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
-                  packet.tet[r], packet.iso[r], light[r], rgba);
     }
     if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
   });

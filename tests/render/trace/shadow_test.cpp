@@ -165,6 +165,54 @@ TEST(Lights, ShadeByTheMeanOfTheLambertTerms) {
     }
 }
 
+// The planes x + z = 0.6 and x + z = -0.6 of the box [-1, 1]^3 seen from above, listed in
+// descending order with colors of their own: each pixel takes the color of the surface it hit
+// (the upper one where it lies in the box, else the lower one) times the headlight's
+// ambient + (1 - ambient) |cos|, with alpha 1, and the background stays zero.
+TEST(Lights, EachHitTakesTheColorOfItsSurface) {
+  const BoxMesh box = jittered_box(4, 0.0);
+  const auto f = sample_field(box.points, [](Vec3d p) { return p.x + p.z; });
+  RenderScene scene = load_scene(box.points, box.tets, f);
+  const render::Camera camera = look_at({0.1, 0.05, 4}, {0, 0, 0}, 40, 48, 48);
+  const render::IsoSurface surfaces[] = {{0.6f, {0.9f, 0.2f, 0.1f}}, {-0.6f, {0.1f, 0.5f, 0.8f}}};
+  const render::TraceOptions options;
+  const render::Framebuffer image =
+      render::trace(scene.volume, scene.bvh, camera, surfaces, options);
+  const ReferenceCamera rays(camera);
+  std::size_t hits_per_surface[2] = {0, 0};
+  for (int j = 0; j < camera.height; ++j)
+    for (int i = 0; i < camera.width; ++i) {
+      const std::size_t p = image.index(i, j);
+      const float* rgba = &image.rgba[4 * p];
+      const Vec3d d = rays.pixel_direction(i, j);
+      // The first of the planes whose crossing lies in the box, well inside its sides.
+      int hit_surface = -1;
+      for (int s = 0; s < 2 && hit_surface < 0; ++s) {
+        const Vec3d at =
+            camera.eye + ((surfaces[s].value - camera.eye.x - camera.eye.z) / (d.x + d.z)) * d;
+        if (max_abs(at) < 0.98) hit_surface = s;
+        if (max_abs(at) < 1.02 && max_abs(at) >= 0.98) hit_surface = 2;  // too near a side
+      }
+      if (hit_surface == 2) continue;
+      if (hit_surface < 0) {
+        EXPECT_EQ(image.hit[p], render::kNoHit);
+        for (int k = 0; k < 4; ++k) EXPECT_EQ(rgba[k], 0.0f);
+        continue;
+      }
+      ASSERT_NE(image.hit[p], render::kNoHit) << i << ", " << j;
+      const double light =
+          options.ambient + (1 - options.ambient) * std::abs(d.x + d.z) / std::sqrt(2.0);
+      const render::Rgb& color = surfaces[hit_surface].color;
+      EXPECT_NEAR(rgba[0], color.r * light, 1e-5);
+      EXPECT_NEAR(rgba[1], color.g * light, 1e-5);
+      EXPECT_NEAR(rgba[2], color.b * light, 1e-5);
+      EXPECT_EQ(rgba[3], 1.0f);
+      ++hits_per_surface[hit_surface];
+    }
+  EXPECT_GT(hits_per_surface[0], 400u);
+  EXPECT_GT(hits_per_surface[1], 200u);
+}
+
 // A headlight alone, listed or not, shades as docs/architecture.md §3 says, bit for bit.
 TEST(Lights, AListedHeadlightIsTheDefaultShading) {
   const GyroidTwist data = gyroid(5);
