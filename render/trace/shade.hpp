@@ -55,6 +55,12 @@ void light_terms(const ShadeContext& ctx, const LocalLights& lights, const RayHi
 // The color field's colormap value at the hit point eye + t d of a ray in volume.tets[tet].
 void field_color(const ShadeContext& ctx, int tet, Vec3f d, float t, float rgb[3]);
 
+// Whether hits take their color from the color field's colormap (color_by, its field loaded)
+// rather than from their surfaces.
+inline bool colors_by_field(const ShadeContext& ctx) {
+  return ctx.options.color_by.colormap && !ctx.volume.color_field.empty();
+}
+
 // The color of a ray with normalized direction `d` that hit isovalue `iso` (sorted index) of
 // volume.tets[tet] at distance t, lit by `light`: the surface's color, or with color_by the
 // field's; only the latter needs the hit point and reads the tet (a random access into the
@@ -62,7 +68,7 @@ void field_color(const ShadeContext& ctx, int tet, Vec3f d, float t, float rgb[3
 inline void shade_color(const ShadeContext& ctx, Vec3f d, float t, int tet, int iso, float light,
                         float rgba[4]) {
   float rgb[3];
-  if (ctx.options.color_by.colormap && !ctx.volume.color_field.empty()) {
+  if (colors_by_field(ctx)) {
     field_color(ctx, tet, d, t, rgb);
   } else {
     const Rgb& c = ctx.surfaces[ctx.surface_of_sorted[iso]].color;

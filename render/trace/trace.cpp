@@ -177,11 +177,10 @@ Framebuffer trace(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
 namespace {
 
 // The frame's table of surface colors, unless a colormap colors the hits (Frame::iso_rgba).
-void set_surface_colors(Frame& f, std::span<const IsoSurface> surfaces,
-                        const TraceOptions& options) {
-  f.surface_colors = !(options.color_by.colormap && !f.volume.color_field.empty());
+void set_surface_colors(Frame& f) {
+  f.surface_colors = !colors_by_field(f.shade);
   for (int k = 0; k < f.isos.count; ++k) {
-    const Rgb& c = surfaces[f.surface_of_sorted[k]].color;
+    const Rgb& c = f.shade.surfaces[f.surface_of_sorted[k]].color;
     float* rgba = f.iso_rgba[k + 1];
     rgba[0] = c.r;
     rgba[1] = c.g;
@@ -221,7 +220,7 @@ void with_frame(const TetVolume& volume, const Bvh& bvh, const Camera& camera,
   std::sort(f.surface_of_sorted, f.surface_of_sorted + f.isos.count,
             [&](int a, int b) { return surfaces[a].value < surfaces[b].value; });
   for (int k = 0; k < f.isos.count; ++k) f.isos.values[k] = surfaces[f.surface_of_sorted[k]].value;
-  set_surface_colors(f, surfaces, options);
+  set_surface_colors(f);
   const bool clipped = !options.clip.empty();
   if (clipped) {
     f.clip = LocalClip(options.clip, volume.origin, f.extent.magnitude);
