@@ -115,7 +115,7 @@ render::UpdatePolicy parse_bvh(const YamlReader& r, const YAML::Node& node) {
   }
   if (node["leaf_size"]) {
     policy.build.leaf_size =
-        static_cast<int>(r.integer_in(node["leaf_size"], "bvh.leaf_size", 1, 64));
+        static_cast<int>(r.integer_in(node["leaf_size"], "bvh.leaf_size", 1, render::kMaxLeafSize));
   }
   if (node["rebuild_ratio"]) {
     policy.rebuild_ratio = r.number_in(node["rebuild_ratio"], "bvh.rebuild_ratio", 1.0, 1e6);

@@ -41,9 +41,14 @@ struct BvhBuildOptions {
   // Maximum tets per leaf. A refit's cost follows the nodes, and the tiled frame tests a leaf's
   // tets lanewise, so large leaves cost the frame nothing measurable while the refit of a new
   // step takes about half as long as with 16 (README, "Performance"); locating points per pixel
-  // (a clip cap) tests a leaf's tets one by one and prefers kPointLocationLeafSize.
+  // (a clip cap) tests a leaf's tets one by one and prefers kPointLocationLeafSize. Taken within
+  // 1..kMaxLeafSize.
   int leaf_size = 64;
 };
+
+// The most tets a leaf holds, whatever leaf_size asks: the tiled frame keeps which of a leaf's
+// tets straddle an isovalue as the bits of one word (render/trace/leaf_straddles.hpp).
+inline constexpr int kMaxLeafSize = 64;
 
 // Leaves for a BVH that locates points per pixel (a clip cap, render/walk/clip_cap.hpp).
 inline constexpr int kPointLocationLeafSize = 16;

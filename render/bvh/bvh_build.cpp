@@ -36,8 +36,12 @@ void split(BuildContext& ctx, const Range& r, Range& left, Range& right) {
 BvhNode make_leaf(const Range& r) { return BvhNode{{}, r.begin, r.size()}; }
 BvhNode make_inner(std::uint32_t first_child) { return BvhNode{{}, first_child, 0}; }
 
+std::uint32_t max_leaf_tets(const BuildContext& ctx) {
+  return static_cast<std::uint32_t>(std::clamp(ctx.options.leaf_size, 1, kMaxLeafSize));
+}
+
 bool is_leaf_range(const BuildContext& ctx, const Range& r) {
-  return r.size() <= static_cast<std::uint32_t>(std::max(1, ctx.options.leaf_size));
+  return r.size() <= max_leaf_tets(ctx);
 }
 
 // Depth-first into `out`, whose element `self` is already allocated; children after parents.
@@ -83,8 +87,8 @@ struct Pending {
 std::vector<Pending> build_top(BuildContext& ctx, LargeArray<BvhNode>& top,
                                std::vector<std::uint32_t>& top_inner) {
   const auto n = static_cast<std::uint32_t>(ctx.items.size());
-  const std::uint32_t subtree_size = std::max<std::uint32_t>(
-      static_cast<std::uint32_t>(std::max(1, ctx.options.leaf_size)), n / kTargetSubtrees);
+  const std::uint32_t subtree_size =
+      std::max<std::uint32_t>(max_leaf_tets(ctx), n / kTargetSubtrees);
   std::vector<Pending> level{{0, Range{0, n, build::centroid_bounds(ctx, 0, n), 0}}}, subtrees;
   top.resize(1);
   while (!level.empty()) {

@@ -10,6 +10,7 @@
 
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/layer_peeling.hpp"
+#include "render/trace/leaf_straddles.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/proxy_intersect.hpp"
@@ -34,7 +35,7 @@ constexpr std::uint64_t kPolygonsPerTest = 256;
 // packets, which keep their hits from one test of their bins to the next.
 struct TileScratch {
   TilePolygons polygons;
-  std::uint32_t pending[2 * W];  // straddling tets not yet set up
+  std::uint32_t pending[W];  // straddling tets not yet set up
   int pending_count = 0;
   std::uint64_t polygons_tested = 0;  // of polygons_added(), those the packets have tested
   std::unique_ptr<RayPacket<kTilePacket>[]> packets =
@@ -78,23 +79,33 @@ void set_up_proxy(const Frame& f, const Tile& tile, const BvhNode& node, TilePol
                  });
 }
 
-// Queues the leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V) and sets up each
-// full lane batch of them while their vertices are still in the cache from the range test.
+// The leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V), tested a lane batch at
+// a time unless another tile of the frame has (leaf_straddles.hpp).
 template <bool kStats>
-void set_up_leaf(const Frame& f, const Tile& tile, const BvhNode& leaf, TileScratch& scratch,
-                 TraceStats& stats) {
-  const std::uint32_t end = leaf.first + leaf.count;
-  for (std::uint32_t batch = leaf.first; batch < end; batch += W) {
-    const int count = static_cast<int>(std::min<std::uint32_t>(W, end - batch));
-    if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
-    for (std::uint64_t straddling = straddling_tets(f.volume, batch, count, f.isos); straddling;
-         straddling &= straddling - 1)
-      scratch.pending[scratch.pending_count++] =
-          batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
+std::uint64_t straddling_tets_of(const Frame& f, const BvhNode& leaf, LeafStraddles& straddles,
+                                 TraceStats& stats) {
+  return straddles.of(static_cast<std::size_t>(&leaf - f.bvh.nodes.data()), [&] {
+    std::uint64_t straddling = 0;
+    for (std::uint32_t batch = 0; batch < leaf.count; batch += W) {
+      const int count = static_cast<int>(std::min<std::uint32_t>(W, leaf.count - batch));
+      if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
+      straddling |= straddling_tets(f.volume, leaf.first + batch, count, f.isos) << batch;
+    }
+    return straddling;
+  });
+}
+
+// Queues the leaf's straddling tets and sets up each full lane batch of them.
+template <bool kStats>
+void set_up_leaf(const Frame& f, const Tile& tile, const BvhNode& leaf, LeafStraddles& straddles,
+                 TileScratch& scratch, TraceStats& stats) {
+  for (std::uint64_t straddling = straddling_tets_of<kStats>(f, leaf, straddles, stats); straddling;
+       straddling &= straddling - 1) {
+    scratch.pending[scratch.pending_count++] =
+        leaf.first + static_cast<std::uint32_t>(std::countr_zero(straddling));
     if (scratch.pending_count < W) continue;
     set_up_tets<kStats>(f, tile, scratch.pending, W, scratch.polygons, stats);
-    scratch.pending_count -= W;
-    std::copy_n(scratch.pending + W, scratch.pending_count, scratch.pending);
+    scratch.pending_count = 0;
   }
 }
 
@@ -159,7 +170,8 @@ void test_bins(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& sta
 // kPolygonsPerTest polygons the packets test their bins, and what their hits hide is skipped
 // from then on; a frame of transparent layers keeps every polygon in its bins for the layers.
 template <bool kStats, bool kClip, bool kLod>
-void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& stats) {
+void collect_polygons(const Frame& f, Tile& tile, LeafStraddles& straddles, TileScratch& scratch,
+                      TraceStats& stats) {
   const auto lod = lod_policy<kLod>(f);
   PacketTraversal<Tile, kStats, ClipNodes<kClip>, decltype(lod)> traversal(
       f.bvh, f.isos, tile, stats, ClipNodes<kClip>(f.clip), lod);
@@ -168,7 +180,7 @@ void collect_polygons(const Frame& f, Tile& tile, TileScratch& scratch, TraceSta
     if (gives_proxy(f, lod, node, tile.eye)) {
       set_up_proxy<kStats>(f, tile, node, scratch.polygons, stats);
     } else {
-      set_up_leaf<kStats>(f, tile, node, scratch, stats);
+      set_up_leaf<kStats>(f, tile, node, straddles, scratch, stats);
     }
     if (!f.layers &&
         scratch.polygons.polygons_added() - scratch.polygons_tested >= kPolygonsPerTest)
@@ -203,8 +215,8 @@ void finish_packets(const Frame& f, Tile& tile, TileScratch& scratch, Framebuffe
 }
 
 template <bool kStats, bool kClip, bool kLod>
-void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch& scratch,
-                TraceStats& stats) {
+void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, LeafStraddles& straddles,
+                TileScratch& scratch, TraceStats& stats) {
   Tile tile = make_tile(f.camera, f.view, f.volume.origin, f.extent.magnitude, x0, y0, kTileSize);
   scratch.polygons.reset(kPackets, kPackets, kTilePacket);
   scratch.polygons_tested = 0;
@@ -212,7 +224,7 @@ void trace_tile(const Frame& f, int x0, int y0, Framebuffer& image, TileScratch&
   const std::uint64_t extracted_before = stats.isopolygon_extractions;
   if (!f.bvh.empty() && !f.extent.empty() && !tile.frustum.misses_box(f.extent.lo, f.extent.hi)) {
     tile.occlusion.reset<kTilePacket>(tile.projection.depth_slack, kPackets);
-    collect_polygons<kStats, kClip, kLod>(f, tile, scratch, stats);
+    collect_polygons<kStats, kClip, kLod>(f, tile, straddles, scratch, stats);
   }
   if constexpr (kStats)  // polygons beside the tile's pixels
     stats.frustum_culled_isopolygons +=
@@ -225,6 +237,7 @@ void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
   const int across = (f.camera.width + kTileSize - 1) / kTileSize;
   const int tiles = across * ((f.camera.height + kTileSize - 1) / kTileSize);
   tbb::enumerable_thread_specific<TraceStats> stats;
+  LeafStraddles straddles(f.bvh.nodes.size());
   tbb::parallel_for(
       0, tiles,
       [&](int t) {
@@ -234,7 +247,7 @@ void trace_tiles_with(const Frame& f, Framebuffer& image, TraceStats* total) {
         // runs at 1M tets). It holds the largest tile's polygons a thread has seen.
         thread_local TileScratch scratch;
         trace_tile<kStats, kClip, kLod>(f, t % across * kTileSize, t / across * kTileSize, image,
-                                        scratch, stats.local());
+                                        straddles, scratch, stats.local());
       },
       tbb::simple_partitioner());
   if (total) {

@@ -1,9 +1,11 @@
 // The BVH builders: a tree built by the SAH builder and one built by the BIH builder, at several
 // leaf sizes, give bitwise identical images on the reference scenes. The tree only decides which
 // tets a ray meets first; the hit kept (nearest, ties to the smaller tet id) must not depend on it.
+// Neither builder makes a leaf larger than render::kMaxLeafSize, whatever leaf size is asked.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include "support/reference_comparison.hpp"
@@ -45,6 +47,20 @@ void expect_same_image_for_both_builders(std::span<const double> points,
     }
   }
   EXPECT_TRUE(another_tree) << label << ": every SAH tree put the tets in the BIH's leaf order";
+}
+
+TEST(BvhBuilders, NoLeafHoldsMoreThanTheMaximum) {
+  const GyroidTwist data = gyroid(6);  // 1296 tets: a leaf of 1000 would hold most of them
+  for (const render::BvhBuilder builder : {render::BvhBuilder::bih, render::BvhBuilder::sah}) {
+    const RenderScene scene =
+        load_scene(data.mesh.points, data.mesh.tets, data.field, built_with(builder, 1000));
+    std::uint32_t largest = 0;
+    for (const render::BvhNode& node : scene.bvh.nodes)
+      if (node.is_leaf()) largest = std::max(largest, node.count);
+    EXPECT_LE(largest, static_cast<std::uint32_t>(render::kMaxLeafSize));
+    EXPECT_GT(largest, static_cast<std::uint32_t>(render::kMaxLeafSize / 4))
+        << "the leaves are far below the maximum: the test no longer asks for large ones";
+  }
 }
 
 TEST(BvhBuilders, SameImageOnTheGyroid) {
