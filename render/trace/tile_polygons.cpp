@@ -194,7 +194,8 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
   for (int k = 0; k < kInts; ++k) ints[k].store_aligned(n[k]);
   for (std::uint64_t lanes = simd::bits(valid); lanes; lanes &= lanes - 1) {
     const int l = std::countr_zero(lanes);
-    const int first_row = n[kFirstRow][l], first_column = n[kFirstColumn][l];
+    const int first_row = n[kFirstRow][l], last_row = n[kLastRow][l];
+    const int first_column = n[kFirstColumn][l], last_column = n[kLastColumn][l];
     // Written in place in its first bin, and copied from there to any other it covers.
     TilePolygon& p = bins_[bin_of(first_row, first_column)].emplace_back();
     for (int c = 0; c < 3; ++c)
@@ -207,10 +208,12 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     p.setup.near_floor = f[kNearFloor][l];
     p.id = {static_cast<std::uint32_t>(n[kKey][l]), n[kTet][l], n[kIso][l]};
     p.first_row = static_cast<std::int16_t>(first_row);
-    p.last_row = static_cast<std::int16_t>(n[kLastRow][l]);
+    p.last_row = static_cast<std::int16_t>(last_row);
     p.first_column = static_cast<std::int16_t>(first_column);
-    p.last_column = static_cast<std::int16_t>(n[kLastColumn][l]);
-    copy_to_other_bins(p);
+    p.last_column = static_cast<std::int16_t>(last_column);
+    // Most polygons cover a few pixels of one bin: asked of the lane's values, not of p's just
+    // written fields, and without a call.
+    if (spans_bins(first_row, last_row, first_column, last_column)) copy_to_other_bins(p);
     ++added_;
   }
 }

@@ -85,6 +85,10 @@ class TilePolygons {
   std::size_t bin_of(int row, int column) const {
     return static_cast<std::size_t>((row >> packet_shift_) * across_ + (column >> packet_shift_));
   }
+  // Whether pixels from first to last row and column lie in more than one bin.
+  bool spans_bins(int first_row, int last_row, int first_column, int last_column) const {
+    return ((first_row ^ last_row) | (first_column ^ last_column)) >> packet_shift_ != 0;
+  }
   // Adds p, which lies in the bin of its first row and column, to the other bins it covers.
   void copy_to_other_bins(const TilePolygon& p);
 
