@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -29,10 +30,15 @@ class TileOcclusion {
   template <int S>
   void reset(float slack, int packets_across) {
     using Packet = RayPacket<S>;
+    static_assert(std::has_single_bit(unsigned{S}) &&
+                      std::has_single_bit(unsigned{Packet::kBlockRows}) &&
+                      std::has_single_bit(unsigned{Packet::kBlockColumns}),
+                  "packets and blocks are found by shifts");
     packet_size_ = S;
+    packet_shift_ = std::countr_zero(unsigned{S});
     packets_across_ = packets_across;
-    block_rows_ = Packet::kBlockRows;
-    block_columns_ = Packet::kBlockColumns;
+    row_shift_ = std::countr_zero(unsigned{Packet::kBlockRows});
+    column_shift_ = std::countr_zero(unsigned{Packet::kBlockColumns});
     blocks_across_ = S / Packet::kBlockColumns;
     slack_ = slack;
     std::fill(std::begin(block_far_), std::end(block_far_), nullptr);
@@ -68,8 +74,8 @@ class TileOcclusion {
     if (!(nearest_far_ < reach)) return false;
     PixelRect r;
     if (!project(lo, hi, projection, last_row, last_column, r)) return false;
-    for (int pr = r.first_row / packet_size_; pr <= r.last_row / packet_size_; ++pr)
-      for (int pc = r.first_column / packet_size_; pc <= r.last_column / packet_size_; ++pc)
+    for (int pr = r.first_row >> packet_shift_; pr <= r.last_row >> packet_shift_; ++pr)
+      for (int pc = r.first_column >> packet_shift_; pc <= r.last_column >> packet_shift_; ++pc)
         if (!hidden_in_packet(pr, pc, r, reach)) return false;
     return true;
   }
@@ -127,8 +133,8 @@ class TileOcclusion {
     r.last_column = std::min(
         last_column, static_cast<int>(std::ceil(p.column_center + p.column_scale * right_hi)) + 1);
     if (r.first_row > r.last_row || r.first_column > r.last_column) return false;
-    const int blocks = (r.last_row / block_rows_ - r.first_row / block_rows_ + 1) *
-                       (r.last_column / block_columns_ - r.first_column / block_columns_ + 1);
+    const int blocks = ((r.last_row >> row_shift_) - (r.first_row >> row_shift_) + 1) *
+                       ((r.last_column >> column_shift_) - (r.first_column >> column_shift_) + 1);
     return blocks <= kMaxBlocks;
   }
 
@@ -139,10 +145,10 @@ class TileOcclusion {
     if (!far) return false;                   // not set up: its rays have no hits yet
     if (packet_far_[k] < reach) return true;  // behind every block of the packet
     const int row0 = pr * packet_size_, column0 = pc * packet_size_;
-    const int first_row = std::max(r.first_row - row0, 0) / block_rows_;
-    const int last_row = std::min(r.last_row - row0, packet_size_ - 1) / block_rows_;
-    const int first_column = std::max(r.first_column - column0, 0) / block_columns_;
-    const int last_column = std::min(r.last_column - column0, packet_size_ - 1) / block_columns_;
+    const int first_row = std::max(r.first_row - row0, 0) >> row_shift_;
+    const int last_row = std::min(r.last_row - row0, packet_size_ - 1) >> row_shift_;
+    const int first_column = std::max(r.first_column - column0, 0) >> column_shift_;
+    const int last_column = std::min(r.last_column - column0, packet_size_ - 1) >> column_shift_;
     for (int br = first_row; br <= last_row; ++br)
       for (int bc = first_column; bc <= last_column; ++bc)
         if (!(far[br * blocks_across_ + bc] < reach)) return false;
@@ -151,8 +157,9 @@ class TileOcclusion {
 
   const float* block_far_[kMaxPackets] = {};  // per packet, null until set up
   float packet_far_[kMaxPackets] = {};        // per packet, its blocks' farthest bound at note()
-  int packet_size_ = 1, packets_across_ = 1;
-  int block_rows_ = 1, block_columns_ = 1, blocks_across_ = 1;
+  // Rows and columns are never negative here: shifts, not divisions (a fifth of the node test).
+  int packet_size_ = 1, packet_shift_ = 0, packets_across_ = 1;
+  int row_shift_ = 0, column_shift_ = 0, blocks_across_ = 1;
   float slack_ = 0;
   float nearest_far_ = kUnknown;  // the nearest finite bound of any block
 };
