@@ -1,9 +1,9 @@
 // Refitting the implicit BVH for a new time step (Wald et al. 2007, §6.2, Schema II): the recorded
-// subtrees are refit in parallel, each its leaves and then its inner nodes, children before
-// parents, then the few top nodes. A leaf's bound is that of its distinct vertices
-// (leaf_vertices.hpp), read once each instead of once per tet corner. Field-only refits touch only
-// the scalar ranges. The SAH cost of the refit tree, the quality measure of the rebuild policy, is
-// summed on the way in a fixed order, so it too is independent of the thread count.
+// subtrees are refit in parallel, each depth first with children before parents, then the few top
+// nodes. A leaf's bound is that of its distinct vertices (leaf_vertices.hpp), read once each
+// instead of once per tet corner. Field-only refits touch only the scalar ranges. The SAH cost of
+// the refit tree, the quality measure of the rebuild policy, is summed on the way in a fixed order,
+// so it too is independent of the thread count.
 #include <tbb/parallel_for.h>
 
 #include <limits>
@@ -59,6 +59,21 @@ void fit_node(const TetVolume& volume, Bvh& bvh, std::uint32_t i, simd::Float4& 
   }
 }
 
+// Fits the subtree under node i, children before parents, depth first: its leaves come in
+// ascending order, and with them their vertex lists and the vertices in the order the leaves
+// first use them (vertex_order.hpp), read front to back. Fitting the nodes in descending index
+// order, which also puts children first, read them back to front: the refit at 14M tets took
+// twice as long, its vertex loads waiting on memory.
+template <bool geometry>
+void fit_below(const TetVolume& volume, Bvh& bvh, std::uint32_t i, simd::Float4& cost) {
+  const BvhNode& node = bvh.nodes[i];
+  if (!node.is_leaf()) {
+    fit_below<geometry>(volume, bvh, node.first, cost);
+    fit_below<geometry>(volume, bvh, node.first + 1, cost);
+  }
+  fit_node<geometry>(volume, bvh, i, cost);
+}
+
 template <bool geometry>
 void refit(const TetVolume& volume, Bvh& bvh) {
   // Lanewise sums in a fixed order per subtree, then over the subtrees in order: the cost does
@@ -67,15 +82,7 @@ void refit(const TetVolume& volume, Bvh& bvh) {
   tbb::parallel_for(std::size_t{0}, bvh.subtrees.size(), [&](std::size_t s) {
     const Bvh::Subtree& st = bvh.subtrees[s];
     simd::Float4 cost(0.0f);
-    // The leaves first, in ascending order: their vertex lists, and the vertices in the order the
-    // leaves first use them (vertex_order.hpp), are then read front to back. Fitting them in the
-    // descending order the inner nodes need made the refit twice as slow at 14M tets (the
-    // vertex loads waiting on memory); the inner nodes follow, children before parents.
-    for (std::uint32_t i = st.begin; i < st.end; ++i)
-      if (bvh.nodes[i].is_leaf()) fit_node<geometry>(volume, bvh, i, cost);
-    for (std::uint32_t i = st.end; i-- > st.begin;)
-      if (!bvh.nodes[i].is_leaf()) fit_node<geometry>(volume, bvh, i, cost);
-    fit_node<geometry>(volume, bvh, st.root, cost);
+    fit_below<geometry>(volume, bvh, st.root, cost);
     subtree_cost[s] = cost;
   });
   simd::Float4 top(0.0f);
