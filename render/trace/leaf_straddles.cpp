@@ -17,8 +17,8 @@ thread_local KeptMasks kept_masks;
 
 LeafStraddles::LeafStraddles(std::size_t nodes) : borrowed_(!kept_masks.taken) {
   masks_ = borrowed_ ? &kept_masks.masks : &own_;
+  masks_->assign(nodes, kUnknown);  // first: should it throw, the storage is not left taken
   kept_masks.taken = true;
-  masks_->assign(nodes, kUnknown);
 }
 
 LeafStraddles::~LeafStraddles() {
