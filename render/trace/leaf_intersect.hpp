@@ -33,25 +33,21 @@ bool intersect_leaf(const TetVolume& volume, const IsoSet& isos, const BvhNode& 
                     int first_active, Intersector& intersector, const RayPacket<S>& packet,
                     TraceStats& stats) {
   bool hit = false;
-  const std::uint32_t end = leaf.first + leaf.count;
-  for (std::uint32_t batch = leaf.first; batch < end; batch += simd::kWidth) {
-    const int count = static_cast<int>(std::min<std::uint32_t>(simd::kWidth, end - batch));
-    if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
-    for (std::uint64_t straddling = straddling_tets(volume, batch, count, isos); straddling;
-         straddling &= straddling - 1) {
-      const std::uint32_t t = batch + static_cast<std::uint32_t>(std::countr_zero(straddling));
-      const TetCorners corners = load_corners(volume, volume.tets[t]);
-      if constexpr (S > 1) {
-        if (frustum_misses_tet(packet, corners)) continue;
-      }
-      for (int k = 0; k < isos.count; ++k) {
-        const int case_index = iso_case(corners, isos.values[k]);
-        if (case_index == 0 || case_index == 15) continue;
-        if constexpr (kStats) ++stats.isopolygon_extractions;
-        const Isopolygon poly = extract_isopolygon(corners, case_index, isos.values[k]);
-        const PolygonHit id{volume.tet_ids[t], static_cast<std::int32_t>(t), k};
-        hit |= intersector.intersect(poly, id, first_active);
-      }
+  if constexpr (kStats) stats.isorange_tests += leaf.count;
+  for (std::uint64_t straddling = leaf_straddling_tets(volume, leaf.first, leaf.count, isos);
+       straddling; straddling &= straddling - 1) {
+    const std::uint32_t t = leaf.first + static_cast<std::uint32_t>(std::countr_zero(straddling));
+    const TetCorners corners = load_corners(volume, volume.tets[t]);
+    if constexpr (S > 1) {
+      if (frustum_misses_tet(packet, corners)) continue;
+    }
+    for (int k = 0; k < isos.count; ++k) {
+      const int case_index = iso_case(corners, isos.values[k]);
+      if (case_index == 0 || case_index == 15) continue;
+      if constexpr (kStats) ++stats.isopolygon_extractions;
+      const Isopolygon poly = extract_isopolygon(corners, case_index, isos.values[k]);
+      const PolygonHit id{volume.tet_ids[t], static_cast<std::int32_t>(t), k};
+      hit |= intersector.intersect(poly, id, first_active);
     }
   }
   return hit;

@@ -33,4 +33,16 @@ inline std::uint64_t straddling_tets(const TetVolume& volume, std::uint32_t firs
   return simd::bits(isos.straddled_by(lo, hi)) & ((std::uint64_t{1} << count) - 1);
 }
 
+// Bit k set when tet first + k straddles an isovalue of `isos`, for k < count <= 64 (the tets of
+// a leaf, at most kMaxLeafSize), a lane batch at a time.
+inline std::uint64_t leaf_straddling_tets(const TetVolume& volume, std::uint32_t first,
+                                          std::uint32_t count, const IsoSet& isos) {
+  std::uint64_t straddling = 0;
+  for (std::uint32_t batch = 0; batch < count; batch += simd::kWidth) {
+    const int in_batch = static_cast<int>(std::min<std::uint32_t>(simd::kWidth, count - batch));
+    straddling |= straddling_tets(volume, first + batch, in_batch, isos) << batch;
+  }
+  return straddling;
+}
+
 }  // namespace tetray::render

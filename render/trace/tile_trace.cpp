@@ -79,19 +79,14 @@ void set_up_proxy(const Frame& f, const Tile& tile, const BvhNode& node, TilePol
                  });
 }
 
-// The leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V), tested a lane batch at
-// a time unless another tile of the frame has (leaf_straddles.hpp).
+// The leaf's tets that straddle an isovalue (Wald et al. 2007, §5.2 V), tested unless another
+// tile of the frame has (leaf_straddles.hpp).
 template <bool kStats>
 std::uint64_t straddling_tets_of(const Frame& f, const BvhNode& leaf, LeafStraddles& straddles,
                                  TraceStats& stats) {
   return straddles.of(static_cast<std::size_t>(&leaf - f.bvh.nodes.data()), [&] {
-    std::uint64_t straddling = 0;
-    for (std::uint32_t batch = 0; batch < leaf.count; batch += W) {
-      const int count = static_cast<int>(std::min<std::uint32_t>(W, leaf.count - batch));
-      if constexpr (kStats) stats.isorange_tests += static_cast<std::uint64_t>(count);
-      straddling |= straddling_tets(f.volume, leaf.first + batch, count, f.isos) << batch;
-    }
-    return straddling;
+    if constexpr (kStats) stats.isorange_tests += leaf.count;
+    return leaf_straddling_tets(f.volume, leaf.first, leaf.count, f.isos);
   });
 }
 

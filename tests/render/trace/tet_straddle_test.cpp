@@ -72,6 +72,30 @@ TEST(TetStraddle, EveryBatchMatchesTheOneTetTest) {
   EXPECT_GT(straddling, 0);  // the sets above do cut tets
 }
 
+// A leaf's tets in lane batches (leaf_straddling_tets): every leaf size up to 64 tets, at every
+// start of the volume, bit for bit the one-tet test, nothing past the leaf.
+TEST(TetStraddle, EveryLeafMatchesTheOneTetTest) {
+  std::mt19937 rng(11);
+  const TetVolume volume = random_volume(rng, 40, 120);
+  const IsoSet isos = isovalues({-0.3f, 0.4f});
+  const auto tets = static_cast<std::uint32_t>(volume.tets.size());
+  int straddling = 0;
+  for (std::uint32_t count = 1; count <= 64; ++count)
+    for (std::uint32_t first = 0; first + count <= tets; first += 7) {
+      const std::uint64_t bits = render::leaf_straddling_tets(volume, first, count, isos);
+      for (std::uint32_t k = 0; k < count; ++k) {
+        const bool expected = tet_straddles(volume, first + k, isos);
+        straddling += expected;
+        ASSERT_EQ((bits >> k) & 1, expected ? 1u : 0u)
+            << "tet " << first + k << " in a leaf of " << count << " from " << first;
+      }
+      if (count < 64) {
+        ASSERT_EQ(bits >> count, 0u) << "bits past the leaf, count " << count;
+      }
+    }
+  EXPECT_GT(straddling, 0);
+}
+
 // Two pages, the second inaccessible: groups placed to end at the boundary fault if read past.
 class GuardedPage {
  public:
