@@ -204,6 +204,9 @@ inline Floats floor(Floats v) {
 }
 inline float ceil(float v) { return std::ceil(v); }
 inline float floor(float v) { return std::floor(v); }
+// Square roots, correctly rounded in every form (IEEE), so each gives the same bits.
+inline Floats sqrt(Floats v) { return xsimd::sqrt(v); }
+inline float sqrt(float v) { return std::sqrt(v); }
 inline Ints to_int(Floats v) {
 #if XSIMD_WITH_AVX512F
   return _mm512_mask_cvttps_epi32(_mm512_setzero_si512(), 0xffff, v);
@@ -390,11 +393,18 @@ inline float max_of(Floats v) {
 }
 inline float max_of(float v) { return v; }
 
-// The smallest of four lanes (no NaN among them).
+// The smallest and the largest of four lanes (no NaN among them); where a batch is four lanes,
+// max_of(Floats) serves.
 inline float min_of(Float4 v) {
   alignas(16) float lanes[4];
   v.store_aligned(lanes);
   return std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
+}
+template <typename Four = Float4>
+requires(!std::is_same_v<Four, Floats>) inline float max_of(Four v) {
+  alignas(16) float lanes[4];
+  v.store_aligned(lanes);
+  return std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
 }
 
 // Bytes one streaming store writes; destinations of stream_copy are aligned to it.

@@ -126,14 +126,17 @@ Mask lanewise_planes(const Floats (&xyz)[3][4], Vec3f eye, Floats (&f)[TilePolyg
 }
 
 // The tile pixels the polygon's projection covers (project_rows, lanewise) and its distance
-// floor into its fields; the lanes whose polygon covers a pixel center of the tile.
+// floor and ceiling into its fields; the lanes whose polygon covers a pixel center of the tile.
 Mask covered_tile_pixels(const Tile& tile, Floats (&f)[TilePolygons::kFloats],
                          Ints (&n)[TilePolygons::kInts]) {
   const RowProjection& pr = tile.projection;
-  Floats row[4], column[4], nearest(0.0f);
+  Floats row[4], column[4], nearest(0.0f), farthest_squared(0.0f);
   Mask in_front(true);
   for (int k = 0; k < 4; ++k) {
     const V r = relative_corner(f, k);
+    const Floats squared = squared_lengths<Floats>({r.x, r.y, r.z});
+    farthest_squared =
+        k == 0 ? squared : xsimd::select(squared > farthest_squared, squared, farthest_squared);
     const Floats depth = r.x * pr.forward.x + r.y * pr.forward.y + r.z * pr.forward.z;
     const Floats height = r.x * pr.up.x + r.y * pr.up.y + r.z * pr.up.z;
     const Floats across = r.x * pr.right.x + r.y * pr.right.y + r.z * pr.right.z;
@@ -143,6 +146,7 @@ Mask covered_tile_pixels(const Tile& tile, Floats (&f)[TilePolygons::kFloats],
     in_front = in_front & (depth > Floats(0.0f));
   }
   f[TilePolygons::kNearFloor] = near_floor(nearest, pr.depth_slack);
+  f[TilePolygons::kFarCeiling] = far_ceiling(farthest_squared, pr.depth_slack);
   Ints rows[2], columns[2];
   covered_lanes(row, tile.last_row, rows[0], rows[1]);
   covered_lanes(column, tile.last_column, columns[0], columns[1]);
@@ -206,6 +210,7 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     p.setup.normal = {f[kNormal][l], f[kNormal + 1][l], f[kNormal + 2][l]};
     p.setup.plane = f[kPlane][l];
     p.setup.near_floor = f[kNearFloor][l];
+    p.setup.far_ceiling = f[kFarCeiling][l];
     p.id = {static_cast<std::uint32_t>(n[kKey][l]), n[kTet][l], n[kIso][l]};
     p.first_row = static_cast<std::int16_t>(first_row);
     p.last_row = static_cast<std::int16_t>(last_row);

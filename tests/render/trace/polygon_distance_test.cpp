@@ -1,0 +1,143 @@
+// The distance from a ray to an isopolygon (render/trace/isopolygon_intersect.hpp) down to grazing
+// incidence: the set-up's ceiling bounds every corner's distance from the eye, a computed distance
+// never leaves the polygon's floor and ceiling, and a well-conditioned ray's distance is the
+// plane's within float rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "render/trace/isopolygon_intersect.hpp"
+
+namespace tetray::test {
+namespace {
+
+using render::Vec3f;
+
+// The square of half side `half` centred at `center`, spanned by the unit vectors u and v.
+render::Isopolygon square(Vec3f center, Vec3f u, Vec3f v, float half) {
+  const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  alignas(16) float xyz[3][4];
+  for (int k = 0; k < 4; ++k) {
+    const Vec3f corner = center + (half * su[k]) * u + (half * sv[k]) * v;
+    for (int c = 0; c < 3; ++c) xyz[c][k] = corner[c];
+  }
+  render::Isopolygon poly;
+  poly.vertex_count = 4;
+  for (int c = 0; c < 3; ++c) poly.xyz[c] = render::simd::Float4::load_aligned(xyz[c]);
+  return poly;
+}
+
+// One ray from `eye` along the unit direction d, its view axis d itself.
+render::RayPacket<1> single_ray(Vec3f eye, Vec3f d) {
+  render::RayPacket<1> ray;
+  ray.eye = eye;
+  ray.dx[0] = d.x;
+  ray.dy[0] = d.y;
+  ray.dz[0] = d.z;
+  ray.tmax[0] = std::numeric_limits<float>::infinity();
+  ray.projection.forward = d;
+  render::prepare_rays(ray);
+  return ray;
+}
+
+Vec3f unit(Vec3f v) { return (1.0f / length(v)) * v; }
+
+double length_of(Vec3f v) {
+  return std::sqrt(double{v.x} * v.x + double{v.y} * v.y + double{v.z} * v.z);
+}
+
+TEST(PolygonDistance, CeilingBoundsEveryCornerTightly) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-50.0f, 50.0f);
+  for (int n = 0; n < 1000; ++n) {
+    const Vec3f center{coordinate(random), coordinate(random), coordinate(random)};
+    const Vec3f u = unit({coordinate(random), coordinate(random), coordinate(random)});
+    const Vec3f v = unit(cross(u, unit({coordinate(random), coordinate(random), 1.0f})));
+    const render::Isopolygon poly = square(center, u, v, 0.5f);
+    const Vec3f eye{coordinate(random), coordinate(random), coordinate(random)};
+    render::PolygonSetup s;
+    render::CoveredPixels covered;
+    render::RowProjection projection;
+    projection.forward = {0, 0, 1};
+    render::set_up_polygon(poly, eye, nullptr, projection, 0, 0, false, s, covered);
+    double farthest = 0;
+    for (int k = 0; k < 4; ++k) {
+      const double distance = length_of(s.corner(k));
+      EXPECT_GE(s.far_ceiling, distance) << "polygon " << n << ", corner " << k;
+      farthest = std::max(farthest, distance);
+    }
+    EXPECT_LE(s.far_ceiling, farthest * (1 + 0x1p-14)) << "polygon " << n;
+  }
+}
+
+// A ray aimed at the centre of a square from ever closer to its plane.
+TEST(PolygonDistance, AimedRaysFindThePlaneDownToGrazing) {
+  const Vec3f center{3.0f, -2.0f, 7.0f}, u = unit({1.0f, 0.2f, -0.3f});
+  const Vec3f v = unit(cross(u, {0.1f, 0.3f, 1.0f}));
+  const Vec3f normal = unit(cross(u, v));
+  const render::Isopolygon poly = square(center, u, v, 1.0f);
+  constexpr float kDistance = 10.0f;
+  int hits = 0;
+  for (double angle = 0.5; angle > 1e-9; angle *= 0.5) {
+    // Aimed at the centre at `angle` from the polygon's plane, along a diagonal.
+    const Vec3f along = unit(u + v);
+    const Vec3f d = unit(static_cast<float>(std::cos(angle)) * along +
+                         static_cast<float>(std::sin(angle)) * normal);
+    const Vec3f eye = center - kDistance * d;
+    render::RayPacket<1> ray = single_ray(eye, d);
+    render::TraceStats stats;
+    render::IsopolygonIntersector<1, false> intersector(ray, stats);
+    if (!intersector.intersect(poly, {1, 0, 0}, 0)) continue;
+    ++hits;
+    render::PolygonSetup s;
+    render::CoveredPixels covered;
+    ASSERT_TRUE(
+        render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
+    EXPECT_GE(ray.tmax[0], s.near_floor) << "angle " << angle;
+    EXPECT_LE(ray.tmax[0], s.far_ceiling) << "angle " << angle;
+    // Well conditioned: the plane's distance. The square reaches 1.5 units along the ray
+    // either side of its centre, so a grazing ray's distance is off by at most that.
+    const double tolerance = angle > 1e-2 ? 1e-5 * kDistance : 1.5;
+    EXPECT_NEAR(ray.tmax[0], kDistance, tolerance) << "angle " << angle;
+  }
+  EXPECT_GT(hits, 20);
+}
+
+// Rays from eyes within 1e-6 of the plane of a small square 10 units away, aimed at random points
+// of it: their distances are ill-conditioned, and without the ceiling's clamp many fall beyond
+// the square's farthest corner.
+TEST(PolygonDistance, RandomGrazingRaysStayBetweenFloorAndCeiling) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit_interval(-1.0f, 1.0f), height(-1e-6f, 1e-6f);
+  int hits = 0, outside = 0;
+  for (int n = 0; n < 200000; ++n) {
+    const Vec3f center{unit_interval(random), unit_interval(random), unit_interval(random)};
+    const Vec3f u = unit({unit_interval(random), unit_interval(random), unit_interval(random)});
+    const Vec3f v = unit(cross(u, unit({unit_interval(random), unit_interval(random), 1.0f})));
+    const render::Isopolygon poly = square(center, u, v, 0.01f);
+    // An eye almost in the polygon's plane, 10 units off, looking at a point of the polygon.
+    const Vec3f normal = unit(cross(u, v));
+    const Vec3f eye = center + 10.0f * unit(unit_interval(random) * u + unit_interval(random) * v) +
+                      height(random) * normal;
+    const Vec3f target =
+        center + (0.01f * unit_interval(random)) * u + (0.01f * unit_interval(random)) * v;
+    const Vec3f d = unit(target - eye);
+    render::RayPacket<1> ray = single_ray(eye, d);
+    render::TraceStats stats;
+    render::IsopolygonIntersector<1, false> intersector(ray, stats);
+    if (!intersector.intersect(poly, {1, 0, 0}, 0)) continue;
+    ++hits;
+    render::PolygonSetup s;
+    render::CoveredPixels covered;
+    ASSERT_TRUE(
+        render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
+    outside += !(ray.tmax[0] >= s.near_floor && ray.tmax[0] <= s.far_ceiling);
+  }
+  EXPECT_GT(hits, 1000);
+  EXPECT_EQ(outside, 0);
+}
+
+}  // namespace
+}  // namespace tetray::test
