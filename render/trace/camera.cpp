@@ -69,11 +69,12 @@ PixelDirections::PixelDirections(const CameraFrame& frame, const Camera& camera)
   column_z.resize(columns);
   for (int i = 0; i < columns; ++i) {
     const Vec3d c = column_term(frame, std::min(i, camera.width - 1) + 0.5, camera.width);
-    column_x[i] = c.x;
-    column_y[i] = c.y;
-    column_z[i] = c.z;
+    column_x[i] = static_cast<float>(c.x);
+    column_y[i] = static_cast<float>(c.y);
+    column_z[i] = static_cast<float>(c.z);
   }
-  for (int j = 0; j < camera.height; ++j) row[j] = row_term(frame, j + 0.5, camera.height);
+  for (int j = 0; j < camera.height; ++j)
+    row[j] = static_cast<Vec3f>(row_term(frame, j + 0.5, camera.height));
 }
 
 Camera fit_camera(Vec3d lo, Vec3d hi, Vec3d from_direction, Vec3d up, double fov_deg, int width,

@@ -37,15 +37,18 @@ CameraFrame make_frame(const Camera& camera);
 // Normalized ray direction through the center of pixel (i, j), in double precision.
 Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j);
 
-// The same directions for a whole frame, from a term per column and a term per row, so a
-// packet's set-up costs an add and a normalization per ray. normalize(column + row) is bitwise
-// equal to pixel_direction(frame, camera, i, j). The column terms are stored x, y, z apart (a
-// packet's row is then converted in SIMD) and repeated past the last column for a packet's
-// width, so a packet over the image edge repeats the edge column's rays.
+// The same directions for a whole frame in float, from a term per column and a term per row
+// (each pixel_direction's terms rounded to float), so a packet's set-up costs an add and a
+// normalization per ray, in float: normalize(column + row) lies within a few float ulps of
+// pixel_direction(frame, camera, i, j), and every packet layout and tile computes it the same way.
+// (In double, the set-up of the rays took 7% of the tiled frame at 1M tets; in float, half as
+// much.) The column terms are stored x, y, z apart (a packet's row is then normalized in SIMD)
+// and repeated past the last column for a packet's width, so a packet over the image edge
+// repeats the edge column's rays.
 struct PixelDirections {
-  static constexpr int kPastEdge = 32;               // columns repeated past the last one
-  std::vector<double> column_x, column_y, column_z;  // forward + ndc_x(i) right
-  std::vector<Vec3d> row;                            // ndc_y(j) up
+  static constexpr int kPastEdge = 32;              // columns repeated past the last one
+  std::vector<float> column_x, column_y, column_z;  // forward + ndc_x(i) right
+  std::vector<Vec3f> row;                           // ndc_y(j) up
 
   PixelDirections(const CameraFrame& frame, const Camera& camera);
 };

@@ -16,25 +16,25 @@ float tilt_zero(float d) { return d == 0 ? std::copysign(1e-20f, d) : d; }
 
 }  // namespace
 
-// Directions of one packet row: pixel (x0 + col, y) for col in [0, S), the same operations as
-// normalize(column + row) in double, written so the compiler vectorizes them, then moved to the
-// row's places in the packet's blocks.
+// Directions of one packet row: pixel (x0 + col, y) for col in [0, S), normalize(column + row)
+// in float (PixelDirections), written so the compiler vectorizes them, then moved to the row's
+// places in the packet's blocks.
 template <int S>
 void setup_row(RayPacket<S>& packet, const PixelDirections& directions, int x0, int pixel_row,
                int row, bool row_valid, int valid_columns) {
   static_assert(S <= PixelDirections::kPastEdge, "a packet row may reach past the last column");
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  const Vec3d r = directions.row[pixel_row];
-  const double* cx = directions.column_x.data() + x0;
-  const double* cy = directions.column_y.data() + x0;
-  const double* cz = directions.column_z.data() + x0;
+  const Vec3f r = directions.row[pixel_row];
+  const float* cx = directions.column_x.data() + x0;
+  const float* cy = directions.column_y.data() + x0;
+  const float* cz = directions.column_z.data() + x0;
   alignas(64) float dx[S], dy[S], dz[S], tmax[S];
   for (int col = 0; col < S; ++col) {
-    const double x = cx[col] + r.x, y = cy[col] + r.y, z = cz[col] + r.z;
-    const double inverse_length = 1.0 / std::sqrt(x * x + y * y + z * z);
-    dx[col] = tilt_zero(static_cast<float>(inverse_length * x));
-    dy[col] = tilt_zero(static_cast<float>(inverse_length * y));
-    dz[col] = tilt_zero(static_cast<float>(inverse_length * z));
+    const float x = cx[col] + r.x, y = cy[col] + r.y, z = cz[col] + r.z;
+    const float inverse_length = 1.0f / std::sqrt(x * x + y * y + z * z);
+    dx[col] = tilt_zero(inverse_length * x);
+    dy[col] = tilt_zero(inverse_length * y);
+    dz[col] = tilt_zero(inverse_length * z);
     tmax[col] = row_valid && col < valid_columns ? kInf : -kInf;
   }
   constexpr int block = RayPacket<S>::kBlockColumns;
