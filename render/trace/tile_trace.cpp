@@ -90,6 +90,17 @@ std::uint64_t straddling_tets_of(const Frame& f, const BvhNode& leaf, LeafStradd
   });
 }
 
+// Asks for the cache lines of a leaf's tets, which its set-up reads first and waited on: the leaf
+// is set up once the traversal hands over the next one (collect_polygons), the lines arriving
+// meanwhile.
+void prefetch_leaf(const Frame& f, const BvhNode& leaf) {
+  if (!leaf.is_leaf()) return;
+  constexpr std::size_t kLine = 64;
+  const auto* tets = reinterpret_cast<const char*>(f.volume.tets.data() + leaf.first);
+  for (std::size_t byte = 0; byte < leaf.count * sizeof(Tet); byte += kLine)
+    __builtin_prefetch(tets + byte);
+}
+
 // Queues the leaf's straddling tets and sets up each full lane batch of them.
 template <bool kStats>
 void set_up_leaf(const Frame& f, const Tile& tile, const BvhNode& leaf, LeafStraddles& straddles,
@@ -164,6 +175,11 @@ void test_bins(const Frame& f, Tile& tile, TileScratch& scratch, TraceStats& sta
 // polygons, a node the level of detail stopped at (or a leaf narrow enough) its proxies. Every
 // kPolygonsPerTest polygons the packets test their bins, and what their hits hide is skipped
 // from then on; a frame of transparent layers keeps every polygon in its bins for the layers.
+// A node is set up once the traversal has handed over the next one, its lines asked for when it
+// came (prefetch_leaf): the tiled frame at 4M tets 5% faster in alternating runs. (Asking also
+// for the vertices, one leaf further ahead, gained nothing more, and for the leaf's straddle
+// record lost 5%.) The occlusion culling then knows one node's polygons less, which changes no
+// pixel.
 template <bool kStats, bool kClip, bool kLod>
 void collect_polygons(const Frame& f, Tile& tile, LeafStraddles& straddles, TileScratch& scratch,
                       TraceStats& stats) {
@@ -171,7 +187,7 @@ void collect_polygons(const Frame& f, Tile& tile, LeafStraddles& straddles, Tile
   PacketTraversal<Tile, kStats, ClipNodes<kClip>, decltype(lod)> traversal(
       f.bvh, f.isos, tile, stats, ClipNodes<kClip>(f.clip), lod);
   scratch.pending_count = 0;
-  traversal.run([&](const BvhNode& node, int) {
+  auto set_up = [&](const BvhNode& node) {
     if (gives_proxy(f, lod, node, tile.eye)) {
       set_up_proxy<kStats>(f, tile, node, scratch.polygons, stats);
     } else {
@@ -180,7 +196,14 @@ void collect_polygons(const Frame& f, Tile& tile, LeafStraddles& straddles, Tile
     if (!f.layers &&
         scratch.polygons.polygons_added() - scratch.polygons_tested >= kPolygonsPerTest)
       test_bins<kStats, kClip>(f, tile, scratch, stats);
+  };
+  const BvhNode* waiting = nullptr;
+  traversal.run([&](const BvhNode& node, int) {
+    prefetch_leaf(f, node);
+    if (waiting) set_up(*waiting);
+    waiting = &node;
   });
+  if (waiting) set_up(*waiting);
   if (scratch.pending_count > 0)
     set_up_tets<kStats>(f, tile, scratch.pending, scratch.pending_count, scratch.polygons, stats);
 }
