@@ -43,28 +43,23 @@ struct PolygonHit {
 };
 
 // What a polygon's ray tests need that depends only on the polygon and the eye, so a polygon
-// seen by several packets is set up once. Per corner k (and the edge from it to corner k + 1),
-// component c at [c][k].
+// seen by several packets is set up once; its corners are not among it (the tiles copy each
+// polygon into the bins of the packets it covers, and the corners were a third of the copy).
+// Per edge k (from corner k to corner k + 1), component c at [c][k].
 struct PolygonSetup {
-  alignas(16) float rel[3][4];   // corners relative to the eye
   alignas(16) float edge[3][4];  // edge plane normals (zero for a triangle's repeated corner)
   Vec3f normal;                  // polygon plane normal
-  float plane = 0;               // dot(normal, rel[.][0])
+  float plane = 0;               // dot(normal, corner 0 relative to the eye)
   float near_floor = 0;          // no distance to the polygon is computed below it (near_floor)
   float far_ceiling = 0;         // nor above it (far_ceiling)
 
-  Vec3f corner(int k) const { return {rel[0][k], rel[1][k], rel[2][k]}; }
   Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
 };
 
 // The corners relative to the eye (the first part of a set-up).
-inline void relative_corners(const Isopolygon& poly, Vec3f eye, simd::Float4 (&rel)[3],
-                             PolygonSetup& s) {
+inline void relative_corners(const Isopolygon& poly, Vec3f eye, simd::Float4 (&rel)[3]) {
   const float e[3] = {eye.x, eye.y, eye.z};
-  for (int c = 0; c < 3; ++c) {
-    rel[c] = poly.xyz[c] - simd::Float4(e[c]);
-    rel[c].store_aligned(s.rel[c]);
-  }
+  for (int c = 0; c < 3; ++c) rel[c] = poly.xyz[c] - simd::Float4(e[c]);
 }
 
 // The view depths of four points relative to the eye (zero with the projection of shadow rays,
@@ -141,7 +136,7 @@ inline bool polygon_planes(const Isopolygon& poly, Vec3f eye, PolygonSetup& s) {
   s.normal = cross(p(2) - p(0), p(3) - p(1));
   if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0) return false;
   edge_normals(poly, eye, s);
-  s.plane = dot(s.normal, s.corner(0));
+  s.plane = dot(s.normal, p(0) - eye);  // bitwise the lanes' corner 0 less the eye
   return true;
 }
 
@@ -211,7 +206,7 @@ inline bool set_up_polygon(const Isopolygon& poly, Vec3f eye, const PacketFrustu
                            const RowProjection& projection, int last_row, int last_column,
                            bool columns, PolygonSetup& s, CoveredPixels& covered) {
   simd::Float4 rel[3];
-  relative_corners(poly, eye, rel, s);
+  relative_corners(poly, eye, rel);
   const simd::Float4 depth = view_depths(rel, projection);
   s.near_floor = near_floor(simd::min_of(depth), projection.depth_slack);
   s.far_ceiling = far_ceiling(simd::max_of(squared_lengths(rel)), projection.depth_slack);

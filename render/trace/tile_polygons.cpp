@@ -203,10 +203,7 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     // Written in place in its first bin, and copied from there to any other it covers.
     TilePolygon& p = bins_[bin_of(first_row, first_column)].emplace_back();
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 4; ++k) {
-        p.setup.rel[c][k] = f[kRel + 4 * c + k][l];
-        p.setup.edge[c][k] = f[kEdge + 4 * c + k][l];
-      }
+      for (int k = 0; k < 4; ++k) p.setup.edge[c][k] = f[kEdge + 4 * c + k][l];
     p.setup.normal = {f[kNormal][l], f[kNormal + 1][l], f[kNormal + 2][l]};
     p.setup.plane = f[kPlane][l];
     p.setup.near_floor = f[kNearFloor][l];

@@ -34,8 +34,7 @@ bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool same_setup(const render::PolygonSetup& a, const render::PolygonSetup& b) {
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 4; ++k)
-      if (!same_bits(a.rel[c][k], b.rel[c][k]) || !same_bits(a.edge[c][k], b.edge[c][k]))
-        return false;
+      if (!same_bits(a.edge[c][k], b.edge[c][k])) return false;
   for (int c = 0; c < 3; ++c)
     if (!same_bits(a.normal[c], b.normal[c])) return false;
   return same_bits(a.plane, b.plane) && same_bits(a.near_floor, b.near_floor) &&
