@@ -51,7 +51,9 @@ struct PolygonSetup {
   Vec3f normal;                  // polygon plane normal
   float plane = 0;               // dot(normal, corner 0 relative to the eye)
   float near_floor = 0;          // no distance to the polygon is computed below it (near_floor)
-  float far_ceiling = 0;         // nor above it (far_ceiling)
+  // An ill-conditioned distance is clamped between these: bounds of the distances from the eye
+  // of the polygon's points (closest_floor, far_ceiling).
+  float closest = 0, far_ceiling = 0;
 
   Vec3f edge_normal(int k) const { return {edge[0][k], edge[1][k], edge[2][k]}; }
 };
@@ -80,22 +82,36 @@ inline F near_floor(F nearest_depth, float depth_slack) {
   return nearest_depth - (xsimd::abs(nearest_depth) * 0x1p-16f + F(depth_slack));
 }
 
-// The ceiling over every distance computed to a polygon (distance()) from the largest squared
-// distance of its corners to the eye: the hit of a ray through the polygon is a convex combination
-// of its corners, so its distance along a unit direction is at most the corners' largest; the
-// ceiling lies above it by far more than the rounding of either (2^-16 of it plus the frame's
-// depth_slack). Only a grazing ray's ill-conditioned distance ever reaches it. For one polygon
-// (float) or lanewise.
+// The ceiling over every distance computed to a polygon (distance()) from the largest distance
+// of its corners to the eye: the hit of a ray through the polygon is a convex combination of its
+// corners, so its distance along a unit direction is at most the corners' largest; the ceiling
+// lies above it by far more than the rounding of either (2^-16 of it plus the frame's
+// depth_slack). For one polygon (float) or lanewise.
 template <typename F>
-inline F far_ceiling(F farthest_squared, float depth_slack) {
-  const F farthest = simd::sqrt(farthest_squared);
+inline F far_ceiling(F farthest, float depth_slack) {
   return farthest + (farthest * 0x1p-16f + F(depth_slack));
 }
 
-// The squared distances to the eye of four points relative to it.
+// The squared lengths of vectors given by their components (lanewise).
 template <typename F>
 inline F squared_lengths(const F (&rel)[3]) {
   return rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2];
+}
+
+// The floor under an ill-conditioned distance to the polygon (distance()). A polygon wholly in
+// front of the eye (its distance floor, near_floor, positive) has no point nearer the eye than
+// its nearest corner less its diameter (the farthest two corners apart; every point of a convex
+// polygon lies within it of each corner), less 2^-16 of its farthest corner's distance and the
+// frame's depth_slack (the rounding of the terms, none farther than that corner), nor any below
+// its distance floor. A polygon reaching behind the eye, whose rays' distances may be negative,
+// or one for rays without a view axis (shadow rays: the floor is negative), keeps the distance
+// floor. From squared distances; for one polygon (float) or lanewise.
+template <typename F>
+inline F closest_floor(F nearest_squared, F diameter_squared, F farthest, F near_floor,
+                       float depth_slack) {
+  const F closest = simd::sqrt(nearest_squared) - simd::sqrt(diameter_squared) -
+                    (farthest * 0x1p-16f + F(depth_slack));
+  return simd::select(near_floor > F(0.0f), simd::vmax(closest, near_floor), near_floor);
 }
 
 // Normals of the planes through the eye and the edges p -> q, lanewise (see the file comment):
@@ -198,6 +214,25 @@ inline CoveredPixels project_rows(const simd::Float4 (&rel)[3], simd::Float4 dep
   return covered;
 }
 
+// The bounds of an ill-conditioned distance (closest_floor, far_ceiling) of a polygon from its
+// corners relative to the eye (lane k: corner k).
+inline void distance_bounds(const simd::Float4 (&rel)[3], float depth_slack, PolygonSetup& s) {
+  using simd::Float4;
+  const Float4 squared = squared_lengths(rel);
+  // Corner k to k + 1, then k to k + 2 (its lanes 2 and 3 repeat 0 and 1).
+  Float4 next[3], across[3];
+  for (int c = 0; c < 3; ++c) {
+    next[c] = simd::next_lane(rel[c]) - rel[c];
+    across[c] = simd::next_lane(simd::next_lane(rel[c])) - rel[c];
+  }
+  const float diameter_squared =
+      std::max(simd::max_of(squared_lengths(next)), simd::max_of(squared_lengths(across)));
+  const float farthest = simd::sqrt(simd::max_of(squared));
+  s.closest =
+      closest_floor(simd::min_of(squared), diameter_squared, farthest, s.near_floor, depth_slack);
+  s.far_ceiling = far_ceiling(farthest, depth_slack);
+}
+
 // Sets up one polygon for rays from `eye`: its corners relative to the eye, distance floor,
 // planes, and the pixels within [0, last_row] x [0, last_column] of `projection` its projection
 // covers (columns left whole unless `columns`). False when none of those rays can hit it: its
@@ -209,14 +244,16 @@ inline bool set_up_polygon(const Isopolygon& poly, Vec3f eye, const PacketFrustu
   relative_corners(poly, eye, rel);
   const simd::Float4 depth = view_depths(rel, projection);
   s.near_floor = near_floor(simd::min_of(depth), projection.depth_slack);
-  s.far_ceiling = far_ceiling(simd::max_of(squared_lengths(rel)), projection.depth_slack);
   covered = {0, last_row, 0, last_column};
   if (frustum) {
     if (frustum->misses_hull(rel)) return false;
     covered = project_rows(rel, depth, projection, last_row, last_column, columns);
   }
-  return covered.first_row <= covered.last_row && covered.first_column <= covered.last_column &&
-         polygon_planes(poly, eye, s);
+  if (covered.first_row > covered.last_row || covered.first_column > covered.last_column ||
+      !polygon_planes(poly, eye, s))
+    return false;
+  distance_bounds(rel, projection.depth_slack, s);
+  return true;
 }
 
 // A hit filter (clip_region.hpp) may discard hits by their point; the default keeps all and
@@ -309,18 +346,19 @@ class IsopolygonIntersector {
   static F edge_value(Vec3f n, F dx, F dy, F dz) { return n.x * dx + n.y * dy + n.z * dz; }
 
   // Distance to the polygon's plane. When the ray runs almost inside the plane, the division is
-  // ill-conditioned; the hit then lies between the polygon's distance floor and ceiling (bounds
-  // for any ray through the polygon, set up once per polygon), and is clamped there. (Clamping
-  // to the corners' own distances along each ray, a tighter bound, took four more dot products
-  // per ray: the tiled frame at 4M tets was about 4% slower.) A ray exactly parallel to the
-  // plane (the eye in it) sees the polygon edge-on, with no area: every edge value is zero there,
-  // so it is rejected here with a negative distance.
+  // ill-conditioned; the hit then lies between the polygon's bounds of its points' distances
+  // (closest_floor, far_ceiling: within its diameter of the truth, as the extent of its corners
+  // along the ray is), and is clamped there. (The bounds are set up once per polygon: clamping
+  // to the corners' distances along each ray took four more dot products per ray tested, and
+  // the tiled frame at 4M tets was about 3% slower.) A ray exactly parallel to the plane (the
+  // eye in it) sees the polygon edge-on, with no area: every edge value is zero there, so it is
+  // rejected here with a negative distance.
   F distance(const PolygonSetup& s, F dx, F dy, F dz) const {
     const F den = edge_value(s.normal, dx, dy, dz);
     const F t = F(s.plane) / den;
-    const F clamped = simd::select(t <= F(s.far_ceiling), t, F(s.far_ceiling));
-    const F floored = simd::select(clamped < F(s.near_floor), F(s.near_floor), clamped);
-    return simd::select(den != F(0.0f), floored, F(-1.0f));
+    const F near(s.closest), far(s.far_ceiling);
+    const F clamped = simd::select(t >= near, simd::select(t <= far, t, far), near);
+    return simd::select(den != F(0.0f), clamped, F(-1.0f));
   }
 
   Packet& packet_;

@@ -125,18 +125,41 @@ Mask lanewise_planes(const Floats (&xyz)[3][4], Vec3f eye, Floats (&f)[TilePolyg
   return (normal.x != Floats(0.0f)) | (normal.y != Floats(0.0f)) | (normal.z != Floats(0.0f));
 }
 
+// The bounds of an ill-conditioned distance (distance_bounds, lanewise) into the polygons'
+// fields.
+void lanewise_distance_bounds(float depth_slack, Floats (&f)[TilePolygons::kFloats]) {
+  Floats squared[4], diameter_squared(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const V r = relative_corner(f, k);
+    squared[k] = squared_lengths<Floats>({r.x, r.y, r.z});
+  }
+  // The pairs in distance_bounds' order: k to k + 1, then k to k + 2.
+  for (int step = 1; step <= 2; ++step)
+    for (int k = 0; k < 4; ++k) {
+      const V d = relative_corner(f, (k + step) % 4) - relative_corner(f, k);
+      const Floats pair = squared_lengths<Floats>({d.x, d.y, d.z});
+      diameter_squared = xsimd::select(pair > diameter_squared, pair, diameter_squared);
+    }
+  Floats nearest = squared[0], farthest_squared = squared[0];
+  for (int k = 1; k < 4; ++k) {
+    nearest = xsimd::select(squared[k] < nearest, squared[k], nearest);
+    farthest_squared = xsimd::select(squared[k] > farthest_squared, squared[k], farthest_squared);
+  }
+  const Floats farthest = simd::sqrt(farthest_squared);
+  f[TilePolygons::kClosest] =
+      closest_floor(nearest, diameter_squared, farthest, f[TilePolygons::kNearFloor], depth_slack);
+  f[TilePolygons::kFarCeiling] = far_ceiling(farthest, depth_slack);
+}
+
 // The tile pixels the polygon's projection covers (project_rows, lanewise) and its distance
-// floor and ceiling into its fields; the lanes whose polygon covers a pixel center of the tile.
+// floor into its fields; the lanes whose polygon covers a pixel center of the tile.
 Mask covered_tile_pixels(const Tile& tile, Floats (&f)[TilePolygons::kFloats],
                          Ints (&n)[TilePolygons::kInts]) {
   const RowProjection& pr = tile.projection;
-  Floats row[4], column[4], nearest(0.0f), farthest_squared(0.0f);
+  Floats row[4], column[4], nearest(0.0f);
   Mask in_front(true);
   for (int k = 0; k < 4; ++k) {
     const V r = relative_corner(f, k);
-    const Floats squared = squared_lengths<Floats>({r.x, r.y, r.z});
-    farthest_squared =
-        k == 0 ? squared : xsimd::select(squared > farthest_squared, squared, farthest_squared);
     const Floats depth = r.x * pr.forward.x + r.y * pr.forward.y + r.z * pr.forward.z;
     const Floats height = r.x * pr.up.x + r.y * pr.up.y + r.z * pr.up.z;
     const Floats across = r.x * pr.right.x + r.y * pr.right.y + r.z * pr.right.z;
@@ -146,7 +169,6 @@ Mask covered_tile_pixels(const Tile& tile, Floats (&f)[TilePolygons::kFloats],
     in_front = in_front & (depth > Floats(0.0f));
   }
   f[TilePolygons::kNearFloor] = near_floor(nearest, pr.depth_slack);
-  f[TilePolygons::kFarCeiling] = far_ceiling(farthest_squared, pr.depth_slack);
   Ints rows[2], columns[2];
   covered_lanes(row, tile.last_row, rows[0], rows[1]);
   covered_lanes(column, tile.last_column, columns[0], columns[1]);
@@ -207,6 +229,7 @@ void TilePolygons::add(const Floats (&floats)[kFloats], const Ints (&ints)[kInts
     p.setup.normal = {f[kNormal][l], f[kNormal + 1][l], f[kNormal + 2][l]};
     p.setup.plane = f[kPlane][l];
     p.setup.near_floor = f[kNearFloor][l];
+    p.setup.closest = f[kClosest][l];
     p.setup.far_ceiling = f[kFarCeiling][l];
     p.id = {static_cast<std::uint32_t>(n[kKey][l]), n[kTet][l], n[kIso][l]};
     p.first_row = static_cast<std::int16_t>(first_row);
@@ -276,6 +299,7 @@ int set_up_polygons(const TetVolume& volume, const TetBatch& batch, Mask live, f
   live = live & !outside_frustum(rel, tile.frustum) & lanewise_planes(xyz, tile.eye, f) &
          covered_tile_pixels(tile, f, n);
   if (!xsimd::any(live)) return extracted;
+  lanewise_distance_bounds(tile.projection.depth_slack, f);
   n[TilePolygons::kKey] =
       simd::gather(reinterpret_cast<const std::int32_t*>(volume.tet_ids.data()), batch.index);
   n[TilePolygons::kTet] = batch.index;

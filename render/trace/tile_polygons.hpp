@@ -58,9 +58,9 @@ class TilePolygons {
  public:
   // Fields of a lane batch of polygons. Floats: corner k's component c relative to the eye at
   // kRel + 4 c + k, edge k's plane normal likewise at kEdge, the polygon's normal, plane,
-  // distance floor and ceiling.
+  // distance floor, and the bounds of an ill-conditioned distance.
   static constexpr int kRel = 0, kEdge = 12, kNormal = 24, kPlane = 27, kNearFloor = 28,
-                       kFarCeiling = 29, kFloats = 30;
+                       kClosest = 29, kFarCeiling = 30, kFloats = 31;
   // Integers: the tile rows and columns covered, tie key, tet, isovalue index.
   static constexpr int kFirstRow = 0, kLastRow = 1, kFirstColumn = 2, kLastColumn = 3, kKey = 4,
                        kTet = 5, kIso = 6, kInts = 7;

@@ -1,6 +1,6 @@
 // The distance from a ray to an isopolygon (render/trace/isopolygon_intersect.hpp) down to grazing
-// incidence: the set-up's ceiling bounds every corner's distance from the eye, a computed distance
-// never leaves the polygon's floor and ceiling, and a well-conditioned ray's distance is the
+// incidence: the set-up's bounds hold the distance of every point of the polygon from the eye,
+// tightly, a computed distance never leaves them, and a well-conditioned ray's distance is the
 // plane's within float rounding.
 #include <gtest/gtest.h>
 
@@ -46,32 +46,63 @@ Vec3f unit(Vec3f v) { return (1.0f / length(v)) * v; }
 
 double square(double x) { return x * x; }
 
-TEST(PolygonDistance, CeilingBoundsEveryCornerTightly) {
+// Squares of side 1 to 20 and eyes at random, some close to them: every point of a square lies
+// between the set-up's bounds, which are within its diameter of the distances its points take.
+TEST(PolygonDistance, BoundsHoldEveryPointOfThePolygon) {
   std::mt19937 random(7);
-  std::uniform_real_distribution<float> coordinate(-50.0f, 50.0f);
+  std::uniform_real_distribution<float> coordinate(-50.0f, 50.0f), size(0.5f, 10.0f),
+      weight(0.0f, 1.0f);
+  int in_front = 0;
   for (int n = 0; n < 1000; ++n) {
     const Vec3f center{coordinate(random), coordinate(random), coordinate(random)};
     const Vec3f u = unit({coordinate(random), coordinate(random), coordinate(random)});
     const Vec3f v = unit(cross(u, unit({coordinate(random), coordinate(random), 1.0f})));
-    const render::Isopolygon poly = square(center, u, v, 0.5f);
-    const Vec3f eye{coordinate(random), coordinate(random), coordinate(random)};
+    const float half = size(random);
+    const render::Isopolygon poly = square(center, u, v, half);
+    // Anywhere, or just beyond an edge, almost in the square's plane (grazing views).
+    const Vec3f eye = n % 2 ? Vec3f{coordinate(random), coordinate(random), coordinate(random)}
+                            : center + (half + 0.01f * std::abs(coordinate(random))) * u +
+                                  (1e-3f * weight(random)) * unit(cross(u, v));
     render::PolygonSetup s;
     render::CoveredPixels covered;
     render::RowProjection projection;
-    projection.forward = {0, 0, 1};
-    render::set_up_polygon(poly, eye, nullptr, projection, 0, 0, false, s, covered);
+    projection.forward = unit(center - eye);
+    ASSERT_TRUE(render::set_up_polygon(poly, eye, nullptr, projection, 0, 0, false, s, covered));
     alignas(16) float corner[3][4];
     for (int c = 0; c < 3; ++c) poly.xyz[c].store_aligned(corner[c]);
-    double farthest = 0;
-    for (int k = 0; k < 4; ++k) {
-      const double distance =
-          std::sqrt(square(corner[0][k] - double{eye.x}) + square(corner[1][k] - double{eye.y}) +
-                    square(corner[2][k] - double{eye.z}));
-      EXPECT_GE(s.far_ceiling, distance) << "polygon " << n << ", corner " << k;
-      farthest = std::max(farthest, distance);
+    auto distance_at = [&](const double(&w)[4]) {
+      double p[3] = {0, 0, 0};
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) p[c] += w[k] * corner[c][k];
+      const float e[3] = {eye.x, eye.y, eye.z};
+      return std::sqrt(square(p[0] - e[0]) + square(p[1] - e[1]) + square(p[2] - e[2]));
+    };
+    double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
+    for (int sample = 0; sample < 200; ++sample) {
+      double w[4] = {0, 0, 0, 0};
+      if (sample < 4) {
+        w[sample] = 1;  // the corners themselves
+      } else {
+        double sum = 0;
+        for (double& x : w) sum += x = weight(random);
+        for (double& x : w) x /= sum;
+      }
+      const double d = distance_at(w);
+      EXPECT_LE(s.closest, d) << "polygon " << n << ", sample " << sample;
+      EXPECT_GE(s.far_ceiling, d) << "polygon " << n << ", sample " << sample;
+      nearest = std::min(nearest, d);
+      farthest = std::max(farthest, d);
     }
+    // The floor is tight for a square in front of the eye, the distance floor otherwise.
+    const double diameter = 2 * std::sqrt(2.0) * half;
+    if (s.near_floor > 0) {
+      EXPECT_GE(s.closest, nearest - 2 * diameter) << "polygon " << n;
+    }
+    EXPECT_GE(s.closest, s.near_floor) << "polygon " << n;
+    in_front += s.near_floor > 0;
     EXPECT_LE(s.far_ceiling, farthest * (1 + 0x1p-14)) << "polygon " << n;
   }
+  EXPECT_GT(in_front, 600);
 }
 
 // A ray aimed at the centre of a square from ever closer to its plane.
@@ -97,7 +128,7 @@ TEST(PolygonDistance, AimedRaysFindThePlaneDownToGrazing) {
     render::CoveredPixels covered;
     ASSERT_TRUE(
         render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
-    EXPECT_GE(ray.tmax[0], s.near_floor) << "angle " << angle;
+    EXPECT_GE(ray.tmax[0], s.closest) << "angle " << angle;
     EXPECT_LE(ray.tmax[0], s.far_ceiling) << "angle " << angle;
     // Well conditioned: the plane's distance. The square reaches 1.5 units along the ray
     // either side of its centre, so a grazing ray's distance is off by at most that.
@@ -108,8 +139,8 @@ TEST(PolygonDistance, AimedRaysFindThePlaneDownToGrazing) {
 }
 
 // Rays from eyes within 1e-6 of the plane of a small square 10 units away, aimed at random points
-// of it: their distances are ill-conditioned, and without the ceiling's clamp many fall beyond
-// the square's farthest corner.
+// of it: their distances are ill-conditioned, and without the clamp many fall outside the
+// square's bounds.
 TEST(PolygonDistance, RandomGrazingRaysStayBetweenFloorAndCeiling) {
   std::mt19937 random(11);
   std::uniform_real_distribution<float> unit_interval(-1.0f, 1.0f), height(-1e-6f, 1e-6f);
@@ -135,7 +166,7 @@ TEST(PolygonDistance, RandomGrazingRaysStayBetweenFloorAndCeiling) {
     render::CoveredPixels covered;
     ASSERT_TRUE(
         render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
-    outside += !(ray.tmax[0] >= s.near_floor && ray.tmax[0] <= s.far_ceiling);
+    outside += !(ray.tmax[0] >= s.closest && ray.tmax[0] <= s.far_ceiling);
   }
   EXPECT_GT(hits, 1000);
   EXPECT_EQ(outside, 0);

@@ -38,7 +38,7 @@ bool same_setup(const render::PolygonSetup& a, const render::PolygonSetup& b) {
   for (int c = 0; c < 3; ++c)
     if (!same_bits(a.normal[c], b.normal[c])) return false;
   return same_bits(a.plane, b.plane) && same_bits(a.near_floor, b.near_floor) &&
-         same_bits(a.far_ceiling, b.far_ceiling);
+         same_bits(a.closest, b.closest) && same_bits(a.far_ceiling, b.far_ceiling);
 }
 
 // What the one-polygon forms give for tet t and isovalue k, or nothing where the tile keeps no
