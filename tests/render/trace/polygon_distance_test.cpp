@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "render/trace/isopolygon_intersect.hpp"
@@ -29,8 +30,14 @@ render::Isopolygon square(Vec3f center, Vec3f u, Vec3f v, float half) {
   return poly;
 }
 
-// One ray from `eye` along the unit direction d, its view axis d itself.
-render::RayPacket<1> single_ray(Vec3f eye, Vec3f d) {
+struct OneHit {
+  float t;                     // the ray's distance to the polygon
+  render::PolygonSetup setup;  // the polygon's set-up for the ray's eye
+};
+
+// One ray from `eye` along the unit direction d (its view axis d itself) against the polygon, or
+// nothing where it misses.
+std::optional<OneHit> intersect_one(const render::Isopolygon& poly, Vec3f eye, Vec3f d) {
   render::RayPacket<1> ray;
   ray.eye = eye;
   ray.dx[0] = d.x;
@@ -39,7 +46,14 @@ render::RayPacket<1> single_ray(Vec3f eye, Vec3f d) {
   ray.tmax[0] = std::numeric_limits<float>::infinity();
   ray.projection.forward = d;
   render::prepare_rays(ray);
-  return ray;
+  render::TraceStats stats;
+  render::IsopolygonIntersector<1, false> intersector(ray, stats);
+  if (!intersector.intersect(poly, {1, 0, 0}, 0)) return std::nullopt;
+  OneHit hit{ray.tmax[0], {}};
+  render::CoveredPixels covered;
+  EXPECT_TRUE(
+      render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, hit.setup, covered));
+  return hit;
 }
 
 Vec3f unit(Vec3f v) { return (1.0f / length(v)) * v; }
@@ -118,22 +132,15 @@ TEST(PolygonDistance, AimedRaysFindThePlaneDownToGrazing) {
     const Vec3f along = unit(u + v);
     const Vec3f d = unit(static_cast<float>(std::cos(angle)) * along +
                          static_cast<float>(std::sin(angle)) * normal);
-    const Vec3f eye = center - kDistance * d;
-    render::RayPacket<1> ray = single_ray(eye, d);
-    render::TraceStats stats;
-    render::IsopolygonIntersector<1, false> intersector(ray, stats);
-    if (!intersector.intersect(poly, {1, 0, 0}, 0)) continue;
+    const std::optional<OneHit> hit = intersect_one(poly, center - kDistance * d, d);
+    if (!hit) continue;
     ++hits;
-    render::PolygonSetup s;
-    render::CoveredPixels covered;
-    ASSERT_TRUE(
-        render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
-    EXPECT_GE(ray.tmax[0], s.closest) << "angle " << angle;
-    EXPECT_LE(ray.tmax[0], s.far_ceiling) << "angle " << angle;
+    EXPECT_GE(hit->t, hit->setup.closest) << "angle " << angle;
+    EXPECT_LE(hit->t, hit->setup.far_ceiling) << "angle " << angle;
     // Well conditioned: the plane's distance. The square reaches 1.5 units along the ray
     // either side of its centre, so a grazing ray's distance is off by at most that.
     const double tolerance = angle > 1e-2 ? 1e-5 * kDistance : 1.5;
-    EXPECT_NEAR(ray.tmax[0], kDistance, tolerance) << "angle " << angle;
+    EXPECT_NEAR(hit->t, kDistance, tolerance) << "angle " << angle;
   }
   EXPECT_GT(hits, 20);
 }
@@ -156,17 +163,10 @@ TEST(PolygonDistance, RandomGrazingRaysStayBetweenFloorAndCeiling) {
                       height(random) * normal;
     const Vec3f target =
         center + (0.01f * unit_interval(random)) * u + (0.01f * unit_interval(random)) * v;
-    const Vec3f d = unit(target - eye);
-    render::RayPacket<1> ray = single_ray(eye, d);
-    render::TraceStats stats;
-    render::IsopolygonIntersector<1, false> intersector(ray, stats);
-    if (!intersector.intersect(poly, {1, 0, 0}, 0)) continue;
+    const std::optional<OneHit> hit = intersect_one(poly, eye, unit(target - eye));
+    if (!hit) continue;
     ++hits;
-    render::PolygonSetup s;
-    render::CoveredPixels covered;
-    ASSERT_TRUE(
-        render::set_up_polygon(poly, eye, nullptr, ray.projection, 0, 0, false, s, covered));
-    outside += !(ray.tmax[0] >= s.closest && ray.tmax[0] <= s.far_ceiling);
+    outside += !(hit->t >= hit->setup.closest && hit->t <= hit->setup.far_ceiling);
   }
   EXPECT_GT(hits, 1000);
   EXPECT_EQ(outside, 0);
