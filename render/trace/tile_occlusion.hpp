@@ -83,7 +83,7 @@ class TileOcclusion {
  private:
   static constexpr float kUnknown = std::numeric_limits<float>::infinity();
   // Far above a distance's rounding and the spread of a hit computed at a grazing angle, which
-  // isopolygon_intersect.hpp clamps between the polygon's corners.
+  // isopolygon_intersect.hpp clamps between bounds of the polygon's points' distances.
   static constexpr float kGrowth = 1.0f + 0x1p-12f;
   // Past this many blocks a box is not worth the look: only the top of the tree covers so many.
   static constexpr int kMaxBlocks = 1024;
