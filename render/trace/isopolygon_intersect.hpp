@@ -98,19 +98,25 @@ inline F squared_lengths(const F (&rel)[3]) {
   return rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2];
 }
 
-// The floor under an ill-conditioned distance to the polygon (distance()). A polygon wholly in
-// front of the eye (its distance floor, near_floor, positive) has no point nearer the eye than
-// its nearest corner less its diameter (the farthest two corners apart; every point of a convex
-// polygon lies within it of each corner), less 2^-16 of its farthest corner's distance and the
-// frame's depth_slack (the rounding of the terms, none farther than that corner), nor any below
-// its distance floor. A polygon reaching behind the eye, whose rays' distances may be negative,
-// or one for rays without a view axis (shadow rays: the floor is negative), keeps the distance
-// floor. From squared distances; for one polygon (float) or lanewise.
+// The floor under an ill-conditioned distance to the polygon (distance()). For a point h of a
+// polygon, a convex combination of corners c_k with weights w_k, |h|^2 = sum w_k |c_k|^2 -
+// 1/2 sum_jk w_j w_k |c_j - c_k|^2 >= m^2 - 3/8 D^2, with m the nearest corner's distance and D
+// the diameter (the farthest two corners apart; sum_{j != k} w_j w_k <= 3/4 for four weights).
+// For a polygon wholly in front of the eye (its distance floor, near_floor, positive) the floor
+// is the root of that, less 2^-18 of the farthest corner's squared distance inside the root and
+// 2^-16 of its distance and the frame's depth_slack outside (far above the rounding of the
+// terms): a few ulps below the polygon's true nearest distance for a polygon small beside its
+// distance (second order in D / m), which keeps the tiles' box culling exact
+// (tile_occlusion.hpp), and never above it. A polygon reaching behind the eye, whose rays'
+// distances may be negative, or one for rays without a view axis (shadow rays: the floor is
+// negative), keeps the distance floor. From squared distances; for one polygon (float) or
+// lanewise.
 template <typename F>
 inline F closest_floor(F nearest_squared, F diameter_squared, F farthest, F near_floor,
                        float depth_slack) {
-  const F closest = simd::sqrt(nearest_squared) - simd::sqrt(diameter_squared) -
-                    (farthest * 0x1p-16f + F(depth_slack));
+  const F squared = nearest_squared - F(0.375f) * diameter_squared - farthest * farthest * 0x1p-18f;
+  const F closest =
+      simd::sqrt(simd::vmax(squared, F(0.0f))) - (farthest * 0x1p-16f + F(depth_slack));
   return simd::select(near_floor > F(0.0f), simd::vmax(closest, near_floor), near_floor);
 }
 
@@ -347,12 +353,12 @@ class IsopolygonIntersector {
 
   // Distance to the polygon's plane. When the ray runs almost inside the plane, the division is
   // ill-conditioned; the hit then lies between the polygon's bounds of its points' distances
-  // (closest_floor, far_ceiling: within its diameter of the truth, as the extent of its corners
-  // along the ray is), and is clamped there. (The bounds are set up once per polygon: clamping
-  // to the corners' distances along each ray took four more dot products per ray tested, and
-  // the tiled frame at 4M tets was about 3% slower.) A ray exactly parallel to the plane (the
-  // eye in it) sees the polygon edge-on, with no area: every edge value is zero there, so it is
-  // rejected here with a negative distance.
+  // (closest_floor, far_ceiling: the floor within a few ulps of its nearest point's distance
+  // for a small polygon, the ceiling its farthest corner's), and is clamped there. (The bounds are
+  // set up once per polygon: clamping to the corners' distances along each ray took four more dot
+  // products per ray tested, and the tiled frame at 4M tets was about 3% slower.) A ray exactly
+  // parallel to the plane (the eye in it) sees the polygon edge-on, with no area: every edge value
+  // is zero there, so it is rejected here with a negative distance.
   F distance(const PolygonSetup& s, F dx, F dy, F dz) const {
     const F den = edge_value(s.normal, dx, dy, dz);
     const F t = F(s.plane) / den;

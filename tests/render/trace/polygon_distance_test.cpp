@@ -4,6 +4,7 @@
 // plane's within float rounding.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -91,7 +92,13 @@ TEST(PolygonDistance, BoundsHoldEveryPointOfThePolygon) {
       const float e[3] = {eye.x, eye.y, eye.z};
       return std::sqrt(square(p[0] - e[0]) + square(p[1] - e[1]) + square(p[2] - e[2]));
     };
-    double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
+    double corners[4];
+    for (int k = 0; k < 4; ++k) {
+      double w[4] = {0, 0, 0, 0};
+      w[k] = 1;
+      corners[k] = distance_at(w);
+    }
+    double farthest = 0;
     for (int sample = 0; sample < 200; ++sample) {
       double w[4] = {0, 0, 0, 0};
       if (sample < 4) {
@@ -104,19 +111,55 @@ TEST(PolygonDistance, BoundsHoldEveryPointOfThePolygon) {
       const double d = distance_at(w);
       EXPECT_LE(s.closest, d) << "polygon " << n << ", sample " << sample;
       EXPECT_GE(s.far_ceiling, d) << "polygon " << n << ", sample " << sample;
-      nearest = std::min(nearest, d);
       farthest = std::max(farthest, d);
     }
-    // The floor is tight for a square in front of the eye, the distance floor otherwise.
-    const double diameter = 2 * std::sqrt(2.0) * half;
-    if (s.near_floor > 0) {
-      EXPECT_GE(s.closest, nearest - 2 * diameter) << "polygon " << n;
+    // For a square in front of the eye the floor is the root of m^2 - 3/8 D^2 (m its nearest
+    // corner's distance), less the margins; the distance floor otherwise.
+    const double diameter_squared = 8.0 * half * half;
+    const double m = *std::min_element(corners, corners + 4);
+    if (s.near_floor > 0 && m * m > 0.375 * diameter_squared) {
+      EXPECT_GE(s.closest, std::sqrt(m * m - 0.375 * diameter_squared) - 0x1p-14 * farthest)
+          << "polygon " << n;
     }
     EXPECT_GE(s.closest, s.near_floor) << "polygon " << n;
     in_front += s.near_floor > 0;
     EXPECT_LE(s.far_ceiling, farthest * (1 + 0x1p-14)) << "polygon " << n;
   }
   EXPECT_GT(in_front, 600);
+}
+
+// A small square far from the eye, seen from any side: its floor lies within 2^-13 of its nearest
+// point's distance, well within the margin by which the tiles' occlusion culling grows a box's
+// distance (tile_occlusion.hpp), so a clamped distance never falls in front of the box around it.
+TEST(PolygonDistance, FloorOfASmallPolygonIsTightForOcclusionCulling) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f), weight(0.0f, 1.0f);
+  for (int n = 0; n < 1000; ++n) {
+    const Vec3f center{coordinate(random), coordinate(random), coordinate(random)};
+    const Vec3f u = unit({coordinate(random), coordinate(random), coordinate(random)});
+    const Vec3f v = unit(cross(u, unit({coordinate(random), coordinate(random), 1.0f})));
+    const render::Isopolygon poly = square(center, u, v, 0.005f);
+    const Vec3f eye =
+        center + 5.0f * unit({coordinate(random), coordinate(random), coordinate(random)});
+    render::PolygonSetup s;
+    render::CoveredPixels covered;
+    render::RowProjection projection;
+    projection.forward = unit(center - eye);
+    ASSERT_TRUE(render::set_up_polygon(poly, eye, nullptr, projection, 0, 0, false, s, covered));
+    ASSERT_GT(s.near_floor, 0.0f);
+    // The nearest point: a dense grid over the square, in double.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 100; ++i)
+      for (int j = 0; j <= 100; ++j) {
+        const double a = 0.005 * (i / 50.0 - 1), b = 0.005 * (j / 50.0 - 1);
+        const double p[3] = {center.x + a * u.x + b * v.x - eye.x,
+                             center.y + a * u.y + b * v.y - eye.y,
+                             center.z + a * u.z + b * v.z - eye.z};
+        nearest = std::min(nearest, std::sqrt(square(p[0]) + square(p[1]) + square(p[2])));
+      }
+    EXPECT_GE(s.closest, nearest * (1 - 0x1p-13)) << "polygon " << n;
+    EXPECT_LE(s.closest, nearest * (1 + 1e-6)) << "polygon " << n;
+  }
 }
 
 // A ray aimed at the centre of a square from ever closer to its plane.
