@@ -92,12 +92,6 @@ inline F far_ceiling(F farthest, float depth_slack) {
   return farthest + (farthest * 0x1p-16f + F(depth_slack));
 }
 
-// The squared lengths of vectors given by their components (lanewise).
-template <typename F>
-inline F squared_lengths(const F (&rel)[3]) {
-  return rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2];
-}
-
 // The floor under an ill-conditioned distance to the polygon (distance()). For a point h of a
 // polygon, a convex combination of corners c_k with weights w_k, |h|^2 = sum w_k |c_k|^2 -
 // 1/2 sum_jk w_j w_k |c_j - c_k|^2 >= m^2 - 3/8 D^2, with m the nearest corner's distance and D
@@ -223,16 +217,15 @@ inline CoveredPixels project_rows(const simd::Float4 (&rel)[3], simd::Float4 dep
 // The bounds of an ill-conditioned distance (closest_floor, far_ceiling) of a polygon from its
 // corners relative to the eye (lane k: corner k).
 inline void distance_bounds(const simd::Float4 (&rel)[3], float depth_slack, PolygonSetup& s) {
-  using simd::Float4;
-  const Float4 squared = squared_lengths(rel);
+  using V = Vec3<simd::Float4>;
+  const V corner{rel[0], rel[1], rel[2]};
+  const V next{simd::next_lane(rel[0]), simd::next_lane(rel[1]), simd::next_lane(rel[2])};
+  const V after_next{simd::next_lane(next.x), simd::next_lane(next.y), simd::next_lane(next.z)};
   // Corner k to k + 1, then k to k + 2 (its lanes 2 and 3 repeat 0 and 1).
-  Float4 next[3], across[3];
-  for (int c = 0; c < 3; ++c) {
-    next[c] = simd::next_lane(rel[c]) - rel[c];
-    across[c] = simd::next_lane(simd::next_lane(rel[c])) - rel[c];
-  }
+  const V to_next = next - corner, across = after_next - corner;
   const float diameter_squared =
-      std::max(simd::max_of(squared_lengths(next)), simd::max_of(squared_lengths(across)));
+      std::max(simd::max_of(dot(to_next, to_next)), simd::max_of(dot(across, across)));
+  const simd::Float4 squared = dot(corner, corner);
   const float farthest = simd::sqrt(simd::max_of(squared));
   s.closest =
       closest_floor(simd::min_of(squared), diameter_squared, farthest, s.near_floor, depth_slack);

@@ -131,7 +131,8 @@ class PacketTraversal {
 
   // Asks for the cache lines of an inner node's children ahead of use: node visits wait on
   // memory, and the geometric test of the near child, or the whole near subtree for the far
-  // one, runs meanwhile. (Asking for a leaf's tets the same way gained nothing.)
+  // one, runs meanwhile. (Asking for a leaf's tets the same way gained nothing; the tiles ask
+  // for them one leaf ahead of its set-up instead, tile_trace.cpp.)
   void prefetch_children(std::uint32_t node) const {
     const BvhNode& n = bvh_.nodes[node];
     if (n.is_leaf()) return;

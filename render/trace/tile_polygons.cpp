@@ -131,19 +131,18 @@ void lanewise_distance_bounds(float depth_slack, Floats (&f)[TilePolygons::kFloa
   Floats squared[4], diameter_squared(0.0f);
   for (int k = 0; k < 4; ++k) {
     const V r = relative_corner(f, k);
-    squared[k] = squared_lengths<Floats>({r.x, r.y, r.z});
+    squared[k] = dot(r, r);
   }
   // The pairs in distance_bounds' order: k to k + 1, then k to k + 2.
   for (int step = 1; step <= 2; ++step)
     for (int k = 0; k < 4; ++k) {
       const V d = relative_corner(f, (k + step) % 4) - relative_corner(f, k);
-      const Floats pair = squared_lengths<Floats>({d.x, d.y, d.z});
-      diameter_squared = xsimd::select(pair > diameter_squared, pair, diameter_squared);
+      diameter_squared = simd::vmax(dot(d, d), diameter_squared);
     }
   Floats nearest = squared[0], farthest_squared = squared[0];
   for (int k = 1; k < 4; ++k) {
-    nearest = xsimd::select(squared[k] < nearest, squared[k], nearest);
-    farthest_squared = xsimd::select(squared[k] > farthest_squared, squared[k], farthest_squared);
+    nearest = simd::vmin(squared[k], nearest);
+    farthest_squared = simd::vmax(squared[k], farthest_squared);
   }
   const Floats farthest = simd::sqrt(farthest_squared);
   f[TilePolygons::kClosest] =

@@ -59,7 +59,7 @@ std::optional<OneHit> intersect_one(const render::Isopolygon& poly, Vec3f eye, V
 
 Vec3f unit(Vec3f v) { return (1.0f / length(v)) * v; }
 
-double square(double x) { return x * x; }
+double squared(double x) { return x * x; }
 
 // Squares of side 1 to 20 and eyes at random, some close to them: every point of a square lies
 // between the set-up's bounds, which are within its diameter of the distances its points take.
@@ -90,7 +90,7 @@ TEST(PolygonDistance, BoundsHoldEveryPointOfThePolygon) {
       for (int k = 0; k < 4; ++k)
         for (int c = 0; c < 3; ++c) p[c] += w[k] * corner[c][k];
       const float e[3] = {eye.x, eye.y, eye.z};
-      return std::sqrt(square(p[0] - e[0]) + square(p[1] - e[1]) + square(p[2] - e[2]));
+      return std::sqrt(squared(p[0] - e[0]) + squared(p[1] - e[1]) + squared(p[2] - e[2]));
     };
     double corners[4];
     for (int k = 0; k < 4; ++k) {
@@ -155,7 +155,7 @@ TEST(PolygonDistance, FloorOfASmallPolygonIsTightForOcclusionCulling) {
         const double p[3] = {center.x + a * u.x + b * v.x - eye.x,
                              center.y + a * u.y + b * v.y - eye.y,
                              center.z + a * u.z + b * v.z - eye.z};
-        nearest = std::min(nearest, std::sqrt(square(p[0]) + square(p[1]) + square(p[2])));
+        nearest = std::min(nearest, std::sqrt(squared(p[0]) + squared(p[1]) + squared(p[2])));
       }
     EXPECT_GE(s.closest, nearest * (1 - 0x1p-13)) << "polygon " << n;
     EXPECT_LE(s.closest, nearest * (1 + 1e-6)) << "polygon " << n;
