@@ -186,6 +186,46 @@ inline Ints gather(const std::int32_t* base, Ints index) {
 #endif
 }
 
+// Lane k of column c is component c of the row rows + 4 row[k] (rows of four floats, 16-byte
+// aligned: Vertex), k < kWidth. AVX-512 and AVX load the rows whole, four to a register (row
+// 4 l + p in 128-bit lane l of register p), and move them into columns by in-lane unpacks: a
+// quarter of the loads of one gather per component, which a tile's set-up of a lane batch of
+// tets had waited on (gather_tets). (The masked AVX-512 forms: see gather.)
+inline void gather_rows(const float* rows, const std::int32_t* row, Floats (&column)[4]) {
+  auto at = [&](int k) { return _mm_load_ps(rows + 4 * static_cast<std::ptrdiff_t>(row[k])); };
+#if XSIMD_WITH_AVX512F
+  auto rows_of = [&](int p) {
+    const __m512 v = _mm512_insertf32x4(_mm512_maskz_broadcast_f32x4(0xf, at(p)), at(4 + p), 1);
+    return _mm512_insertf32x4(_mm512_insertf32x4(v, at(8 + p), 2), at(12 + p), 3);
+  };
+  const __m512 r0 = rows_of(0), r1 = rows_of(1), r2 = rows_of(2), r3 = rows_of(3);
+  // Per 128-bit lane: (x, x, y, y) and (z, z, f, f) of rows p = 0, 1 and of rows p = 2, 3.
+  const __m512d xy01 = _mm512_castps_pd(_mm512_mask_unpacklo_ps(r0, 0xffff, r0, r1));
+  const __m512d zf01 = _mm512_castps_pd(_mm512_mask_unpackhi_ps(r0, 0xffff, r0, r1));
+  const __m512d xy23 = _mm512_castps_pd(_mm512_mask_unpacklo_ps(r2, 0xffff, r2, r3));
+  const __m512d zf23 = _mm512_castps_pd(_mm512_mask_unpackhi_ps(r2, 0xffff, r2, r3));
+  column[0] = _mm512_castpd_ps(_mm512_mask_unpacklo_pd(xy01, 0xff, xy01, xy23));
+  column[1] = _mm512_castpd_ps(_mm512_mask_unpackhi_pd(xy01, 0xff, xy01, xy23));
+  column[2] = _mm512_castpd_ps(_mm512_mask_unpacklo_pd(zf01, 0xff, zf01, zf23));
+  column[3] = _mm512_castpd_ps(_mm512_mask_unpackhi_pd(zf01, 0xff, zf01, zf23));
+#elif XSIMD_WITH_AVX
+  auto rows_of = [&](int p) { return _mm256_set_m128(at(4 + p), at(p)); };
+  const __m256 r0 = rows_of(0), r1 = rows_of(1), r2 = rows_of(2), r3 = rows_of(3);
+  const __m256d xy01 = _mm256_castps_pd(_mm256_unpacklo_ps(r0, r1));
+  const __m256d zf01 = _mm256_castps_pd(_mm256_unpackhi_ps(r0, r1));
+  const __m256d xy23 = _mm256_castps_pd(_mm256_unpacklo_ps(r2, r3));
+  const __m256d zf23 = _mm256_castps_pd(_mm256_unpackhi_ps(r2, r3));
+  column[0] = _mm256_castpd_ps(_mm256_unpacklo_pd(xy01, xy23));
+  column[1] = _mm256_castpd_ps(_mm256_unpackhi_pd(xy01, xy23));
+  column[2] = _mm256_castpd_ps(_mm256_unpacklo_pd(zf01, zf23));
+  column[3] = _mm256_castpd_ps(_mm256_unpackhi_pd(zf01, zf23));
+#else
+  static_assert(kWidth == 4);
+  const Float4 r[4] = {at(0), at(1), at(2), at(3)};
+  transpose4(r, column);
+#endif
+}
+
 // Rounding up and down, and truncation to integers, lanewise or of one float. The AVX-512 forms
 // take an explicit start value: GCC 12 reports the undefined one of xsimd's as uninitialized.
 inline Floats ceil(Floats v) {

@@ -263,11 +263,13 @@ TetBatch gather_tets(const TetVolume& volume, const std::uint32_t* tets, int cou
   TetBatch batch;
   batch.index = Ints::load_aligned(index);
   batch.valid = as_mask(simd::lane_indices() < Ints(count));
-  const std::int32_t* corners = volume.tets.data()->v.data();
   const float* vertex = &volume.vertices.data()->x;
   for (int k = 0; k < 4; ++k) {
-    const Ints v = simd::gather(corners, batch.index * 4 + k) * 4;
-    for (int c = 0; c < 4; ++c) batch.corner[c][k] = simd::gather(vertex + c, v);
+    alignas(64) std::int32_t corner[W];
+    for (int j = 0; j < W; ++j) corner[j] = volume.tets[static_cast<std::size_t>(index[j])].v[k];
+    Floats column[4];
+    simd::gather_rows(vertex, corner, column);
+    for (int c = 0; c < 4; ++c) batch.corner[c][k] = column[c];
   }
   return batch;
 }

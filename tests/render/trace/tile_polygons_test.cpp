@@ -160,6 +160,37 @@ TEST(TilePolygons, LanewiseSetUpMatchesOnePolygonWithIsovaluesOnVertices) {
   expect_lanewise_set_up(scene, isovalues, "grid");
 }
 
+// A lane batch's corners are the vertex store's (simd::gather_rows moves whole rows into lanes):
+// tets picked out of order, every batch size, lanes past the count repeating the first tet.
+TEST(TilePolygons, GatheredCornersAreTheVertexStores) {
+  const BoxMesh mesh = jittered_box(3);
+  const RenderScene scene = load_scene(mesh.points, mesh.tets, random_field(mesh.point_count(), 9));
+  const render::TetVolume& volume = scene.volume;
+  constexpr int W = render::simd::kWidth;
+  std::vector<std::uint32_t> tets(volume.tets.size());
+  std::iota(tets.begin(), tets.end(), 0u);
+  std::reverse(tets.begin(), tets.end());
+  for (int count = 1; count <= W; ++count)
+    for (std::size_t first = 0; first + static_cast<std::size_t>(count) <= tets.size();
+         first += 7) {
+      const render::TetBatch batch = render::gather_tets(volume, tets.data() + first, count);
+      float lanes[W];
+      for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k) {
+          batch.corner[c][k].store_unaligned(lanes);
+          for (int j = 0; j < W; ++j) {
+            const std::uint32_t tet = tets[first + static_cast<std::size_t>(j < count ? j : 0)];
+            const render::Vertex& v =
+                volume.vertices[static_cast<std::size_t>(volume.tets[tet].v[k])];
+            const float expected[4] = {v.x, v.y, v.z, v.f};
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(lanes[j]),
+                      std::bit_cast<std::uint32_t>(expected[c]))
+                << "tet " << tet << " corner " << k << " component " << c << " lane " << j;
+          }
+        }
+    }
+}
+
 // The bins are found by shifts: a packet size that is not a power of two is refused by name.
 TEST(TilePolygons, RefuseAPacketSizeThatIsNotAPowerOfTwo) {
   render::TilePolygons polygons;
