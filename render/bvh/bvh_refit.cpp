@@ -15,7 +15,9 @@ namespace tetray::render {
 namespace {
 
 // A leaf's bound is that of its listed vertices: all four dimensions from whole vertices, or
-// the scalar range alone from their values (a field-only refit leaves the geometry as it is).
+// the scalar range alone (a field-only refit leaves the geometry as it is), also from whole
+// vertices, four to a register: gathering their values sixteen at a time made the field-only
+// update at 4M tets 1.4x slower than the whole one on an AMD EPYC (the same lines are read).
 Bounds4Builder leaf_bound(const TetVolume& volume, const Bvh& bvh, std::uint32_t i) {
   const std::uint32_t begin = bvh.leaf_vertex_begin[i];
   Bounds4Builder b;
@@ -25,10 +27,9 @@ Bounds4Builder leaf_bound(const TetVolume& volume, const Bvh& bvh, std::uint32_t
 }
 
 void fit_leaf_range(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
-  const std::uint32_t begin = bvh.leaf_vertex_begin[i];
-  simd::min_max_component(&volume.vertices.data()->x, 3, bvh.leaf_vertices.data() + begin,
-                          static_cast<int>(bvh.leaf_vertex_begin[i + 1] - begin), node.bounds.lo[3],
-                          node.bounds.hi[3]);
+  const Bounds4 b = leaf_bound(volume, bvh, i).bounds();
+  node.bounds.lo[3] = b.lo[3];
+  node.bounds.hi[3] = b.hi[3];
 }
 
 Bounds4Builder inner_bound(const LargeArray<BvhNode>& nodes, const BvhNode& node) {

@@ -303,6 +303,17 @@ inline void quad_columns(const std::int32_t* groups, int count, Ints (&column)[4
 #endif
 }
 
+#if XSIMD_WITH_AVX512F
+// The lower (k = 0) or upper (k = 1) eight floats of v. AVX-512F alone has the 64-bit form of the
+// extract, here masked: GCC 12 reports the undefined start value of the plain form (and of the
+// cast to the lower half) as uninitialized where a caller inlines it twice.
+template <int k>
+inline __m256 half_of(__m512 v) {
+  return _mm256_castpd_ps(
+      _mm512_mask_extractf64x4_pd(_mm256_setzero_pd(), 0xf, _mm512_castps_pd(v), k));
+}
+#endif
+
 // Component-wise minimum and maximum of the rows rows[index[k]], k in [0, count), count >= 1,
 // each row four floats (16-byte aligned). AVX-512 holds four rows in a register, so a leaf of a
 // dozen vertices takes three steps (a row repeated past the end changes neither bound); the
@@ -326,11 +337,8 @@ inline void min_max_rows(const float* rows, const std::uint32_t* index, int coun
     low = _mm512_mask_min_ps(low, 0xffff, low, v);  // masked forms: see gather
     high = _mm512_mask_max_ps(high, 0xffff, high, v);
   }
-  auto upper_half = [](__m512 v) {  // AVX-512F alone has the 64-bit form of the extract
-    return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1));
-  };
-  const __m256 low8 = _mm256_min_ps(_mm512_castps512_ps256(low), upper_half(low));
-  const __m256 high8 = _mm256_max_ps(_mm512_castps512_ps256(high), upper_half(high));
+  const __m256 low8 = _mm256_min_ps(half_of<0>(low), half_of<1>(low));
+  const __m256 high8 = _mm256_max_ps(half_of<0>(high), half_of<1>(high));
   lo = _mm_min_ps(_mm256_castps256_ps128(low8), _mm256_extractf128_ps(low8, 1));
   hi = _mm_max_ps(_mm256_castps256_ps128(high8), _mm256_extractf128_ps(high8, 1));
 #else
@@ -350,33 +358,6 @@ inline void min_max_rows(const float* rows, const std::uint32_t* index, int coun
   }
   lo = xsimd::min(lo_even, lo_odd);
   hi = xsimd::max(hi_even, hi_odd);
-#endif
-}
-
-// Minimum and maximum of component `c` of the same rows: with AVX-512, sixteen rows' components
-// gathered at once.
-inline void min_max_component(const float* rows, int c, const std::uint32_t* index, int count,
-                              float& lo, float& hi) {
-#if XSIMD_WITH_AVX512F
-  const __m512 infinity = _mm512_set1_ps(std::numeric_limits<float>::infinity());
-  __m512 low = infinity, high = -infinity;
-  for (int k = 0; k < count; k += 16) {
-    const auto lanes = static_cast<__mmask16>((1u << std::min(16, count - k)) - 1);
-    const __m512i rows_at = _mm512_maskz_loadu_epi32(lanes, index + k);
-    const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(rows_at, 2), _mm512_set1_epi32(c));
-    const __m512 v = _mm512_mask_i32gather_ps(infinity, lanes, at, rows, sizeof(float));
-    low = _mm512_mask_min_ps(low, lanes, low, v);
-    high = _mm512_mask_max_ps(high, lanes, high, v);
-  }
-  lo = _mm512_reduce_min_ps(low);
-  hi = _mm512_reduce_max_ps(high);
-#else
-  lo = hi = rows[4 * std::size_t{index[0]} + c];
-  for (int k = 1; k < count; ++k) {
-    const float v = rows[4 * std::size_t{index[k]} + c];
-    lo = v < lo ? v : lo;
-    hi = v > hi ? v : hi;
-  }
 #endif
 }
 
