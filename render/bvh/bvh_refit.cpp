@@ -14,22 +14,16 @@
 namespace tetray::render {
 namespace {
 
-// A leaf's bound is that of its listed vertices: all four dimensions from whole vertices, or
-// the scalar range alone (a field-only refit leaves the geometry as it is), also from whole
-// vertices, four to a register: gathering their values sixteen at a time made the field-only
-// update at 4M tets 1.4x slower than the whole one on an AMD EPYC (the same lines are read).
+// A leaf's bound is that of its listed vertices, from whole vertices, four to a register. A
+// field-only refit takes its scalar range from the same loads: gathering the values sixteen at
+// a time made the field-only update at 4M tets 1.4x slower than the whole one on an AMD EPYC
+// (the same lines are read).
 Bounds4Builder leaf_bound(const TetVolume& volume, const Bvh& bvh, std::uint32_t i) {
   const std::uint32_t begin = bvh.leaf_vertex_begin[i];
   Bounds4Builder b;
   simd::min_max_rows(&volume.vertices.data()->x, bvh.leaf_vertices.data() + begin,
                      static_cast<int>(bvh.leaf_vertex_begin[i + 1] - begin), b.lo, b.hi);
   return b;
-}
-
-void fit_leaf_range(const TetVolume& volume, const Bvh& bvh, std::uint32_t i, BvhNode& node) {
-  const Bounds4 b = leaf_bound(volume, bvh, i).bounds();
-  node.bounds.lo[3] = b.lo[3];
-  node.bounds.hi[3] = b.hi[3];
 }
 
 Bounds4Builder inner_bound(const LargeArray<BvhNode>& nodes, const BvhNode& node) {
@@ -39,24 +33,23 @@ Bounds4Builder inner_bound(const LargeArray<BvhNode>& nodes, const BvhNode& node
   return b;
 }
 
-// Fits node i and, when the geometry changed, adds its terms of the SAH cost to `cost` (the
-// area terms weighted by the node's tets, one for an inner node), from the bound still in
-// registers and without horizontal sums or conversions: a node's own work is a few dozen
-// instructions, and the SAH term in scalar double had been a tenth of a geometry refit.
+// Fits node i: its whole bound when the geometry changed, adding its terms of the SAH cost to
+// `cost` (the area terms weighted by the node's tets, one for an inner node) from the bound still
+// in registers and without horizontal sums or conversions (a node's own work is a few dozen
+// instructions, and the SAH term in scalar double had been a tenth of a geometry refit); only
+// its scalar range otherwise.
 template <bool geometry>
 void fit_node(const TetVolume& volume, Bvh& bvh, std::uint32_t i, simd::Float4& cost) {
   BvhNode& node = bvh.nodes[i];
+  const bool leaf = node.is_leaf();
+  const Bounds4Builder b = leaf ? leaf_bound(volume, bvh, i) : inner_bound(bvh.nodes, node);
   if constexpr (geometry) {
-    const bool leaf = node.is_leaf();
-    const Bounds4Builder b = leaf ? leaf_bound(volume, bvh, i) : inner_bound(bvh.nodes, node);
     node.bounds = b.bounds();
     cost = cost + b.area_terms() * simd::Float4(leaf ? static_cast<float>(node.count) : 1.0f);
-  } else if (node.is_leaf()) {
-    fit_leaf_range(volume, bvh, i, node);
   } else {
-    const Bounds4 b = inner_bound(bvh.nodes, node).bounds();
-    node.bounds.lo[3] = b.lo[3];
-    node.bounds.hi[3] = b.hi[3];
+    const Bounds4 range = b.bounds();
+    node.bounds.lo[3] = range.lo[3];
+    node.bounds.hi[3] = range.hi[3];
   }
 }
 
