@@ -33,10 +33,16 @@ Device make_device(int threads) {
   return device;
 }
 
-// An uncommitted scene holding the triangles through shared buffers (no copy).
-Scene make_scene(RTCDevice device, const TriangleSoup& triangles) {
+// An uncommitted scene holding the triangles through shared buffers (no copy), built as `build`
+// asks (EmbreeBuild).
+Scene make_scene(RTCDevice device, const TriangleSoup& triangles, EmbreeBuild build) {
   Scene scene(rtcNewScene(device), &rtcReleaseScene);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (build == EmbreeBuild::new_step) {
+    rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_LOW);
+    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_LOW);
+  }
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                              triangles.xyz.data(), 0, 3 * sizeof(float), triangles.vertex_count());
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
@@ -173,19 +179,21 @@ struct EmbreeReference::State {
   TriangleSoup triangles;
   Scene scene{nullptr, &rtcReleaseScene};
   EmbreeImage image;
+  EmbreeBuild build;
 
-  State(const render::Camera& camera, int threads) : device(make_device(threads)), image(camera) {}
+  State(const render::Camera& camera, int threads, EmbreeBuild b)
+      : device(make_device(threads)), image(camera), build(b) {}
 };
 
-EmbreeReference::EmbreeReference(const render::Camera& camera, int threads)
-    : state_(std::make_unique<State>(camera, threads)) {}
+EmbreeReference::EmbreeReference(const render::Camera& camera, int threads, EmbreeBuild build)
+    : state_(std::make_unique<State>(camera, threads, build)) {}
 
 EmbreeReference::~EmbreeReference() = default;
 
 double EmbreeReference::build_ms(TriangleSoup triangles) {
   state_->scene.reset();  // before the buffers it shares go
   state_->triangles = std::move(triangles);
-  state_->scene = make_scene(state_->device.get(), state_->triangles);
+  state_->scene = make_scene(state_->device.get(), state_->triangles, state_->build);
   return time_ms([&] { rtcCommitScene(state_->scene.get()); });
 }
 
@@ -206,27 +214,49 @@ const char* embree_trace_mode(bool packets) {
   return packets ? "rtcIntersect16, coherent" : "rtcIntersect1";
 }
 
+namespace {
+
+bool same_depth(const std::vector<float>& a, const std::vector<float>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](float x, float y) { return x == y || (std::isinf(x) && std::isinf(y)); });
+}
+
+double best_build_ms(EmbreeReference& embree, const TriangleSoup& triangles) {
+  return best_of_ms(kRepetitions, [&] { return embree.build_ms(triangles); });
+}
+
+double best_trace_ms(EmbreeReference& embree, bool packets) {
+  embree.trace_ms(packets);
+  return best_of_ms(kRepetitions, [&] { return embree.trace_ms(packets); });
+}
+
+}  // namespace
+
 // Each figure the best of a few runs, the traces after a warm-up, every run into the same image
 // (as tetray's frames are measured).
 EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
                             int threads) {
   EmbreeReference embree(camera, threads);
   EmbreeRun run;
-  run.build_ms = best_of_ms(kRepetitions, [&] { return embree.build_ms(triangles); });
-  auto best_trace_ms = [&](bool packets) {
-    embree.trace_ms(packets);
-    return best_of_ms(kRepetitions, [&] { return embree.trace_ms(packets); });
-  };
-  const double single_ms = best_trace_ms(false);
+  run.build_ms = best_build_ms(embree, triangles);
+  const double single_ms = best_trace_ms(embree, false);
   const std::vector<float> single_depth = embree.depth();
-  const double packet_ms = best_trace_ms(true);
+  const double packet_ms = best_trace_ms(embree, true);
   run.trace_ms = std::min(single_ms, packet_ms);
   run.packets = packet_ms < single_ms;
   run.depth = embree.depth();  // of the packet traces, the last ones
-  run.same_depth =
-      std::equal(run.depth.begin(), run.depth.end(), single_depth.begin(), single_depth.end(),
-                 [](float a, float b) { return a == b || (std::isinf(a) && std::isinf(b)); });
+  run.same_depth = same_depth(run.depth, single_depth);
   return run;
+}
+
+EmbreeStepBuild step_build_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
+                                       int threads, const EmbreeRun& static_run) {
+  EmbreeReference embree(camera, threads, EmbreeBuild::new_step);
+  EmbreeStepBuild step;
+  step.build_ms = best_build_ms(embree, triangles);
+  step.trace_ms = best_trace_ms(embree, static_run.packets);
+  step.same_depth = same_depth(embree.depth(), static_run.depth);
+  return step;
 }
 
 }  // namespace tetray::bench

@@ -11,6 +11,14 @@
 
 namespace tetray::bench {
 
+// How Embree builds a scene. `static_scene`: its default build (medium quality), for the trace
+// comparisons (a high-quality build, with spatial splits, traced no faster: 27.0 against 27.1 ms
+// at 1M tets, 32.0 against 31.9 ms at 4M, while building 5x longer). `new_step`: a dynamic scene
+// at low quality, Embree's setting for geometry rebuilt every frame, for the in-situ step: its
+// build took a quarter to a half of the default's on the gyroid-twist (6-11 against 19-22 ms at
+// 1M tets, 15-23 against 50-56 ms at 4M), its trace about 3% longer, the same depth image.
+enum class EmbreeBuild { static_scene, new_step };
+
 struct EmbreeRun {
   double build_ms = 0;       // rtcCommitScene
   double trace_ms = 0;       // the faster of single rays and 16-ray packets
@@ -22,14 +30,26 @@ struct EmbreeRun {
 // The Embree call that traces: "rtcIntersect16" for packets, "rtcIntersect1" for single rays.
 const char* embree_trace_mode(bool packets);
 
+// Embree's default build (EmbreeBuild::static_scene) and its traces.
 EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
                             int threads);
+
+// The new-step build (EmbreeBuild::new_step) of the same triangles and its trace in the mode
+// `static_run` found faster, checked against that run's depth image.
+struct EmbreeStepBuild {
+  double build_ms = 0;
+  double trace_ms = 0;
+  bool same_depth = false;  // its depth image is bitwise static_run's
+};
+EmbreeStepBuild step_build_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
+                                       int threads, const EmbreeRun& static_run);
 
 // Embree kept across time steps: one device, each step a new scene over that step's triangles
 // (kept beside the scene, whose buffers share them), traced into one kept image.
 class EmbreeReference {
  public:
-  EmbreeReference(const render::Camera& camera, int threads);
+  EmbreeReference(const render::Camera& camera, int threads,
+                  EmbreeBuild build = EmbreeBuild::static_scene);
   ~EmbreeReference();
   EmbreeReference(const EmbreeReference&) = delete;
   EmbreeReference& operator=(const EmbreeReference&) = delete;

@@ -6,7 +6,9 @@ namespace tetray::bench {
 
 ReferenceStep::ReferenceStep(const std::vector<std::int64_t>& tets, const render::Camera& camera,
                              int threads, bool packets)
-    : contour_(tets, kIsovalue), embree_(camera, threads), packets_(packets) {}
+    : contour_(tets, kIsovalue),
+      embree_(camera, threads, EmbreeBuild::new_step),
+      packets_(packets) {}
 
 double ReferenceStep::run_ms(const std::vector<double>& points, const std::vector<double>& field) {
   contour_.set_step(points, field);

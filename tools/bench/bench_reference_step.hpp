@@ -18,8 +18,8 @@ class ReferenceStep {
   ReferenceStep(const std::vector<std::int64_t>& tets, const render::Camera& camera, int threads,
                 bool packets);
 
-  // VTK contour + Embree build + trace of the step's points and field. Not timed: handing the
-  // contour's triangles to Embree's buffers, a copy a coupled pipeline would not make.
+  // VTK contour + Embree new-step build + trace of the step's points and field. Not timed: handing
+  // the contour's triangles to Embree's buffers, a copy a coupled pipeline would not make.
   double run_ms(const std::vector<double>& points, const std::vector<double>& field);
 
  private:

@@ -46,6 +46,8 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
        s.ref.depth_agree_fraction >= 0.999},
       {"median rel depth diff", format("%.2e", s.ref.depth_median_rel_diff), "< 1e-5",
        s.ref.depth_median_rel_diff < 1e-5},
+      {"Embree new-step build's depth", s.ref.embree_step_same_depth ? "same" : "differs",
+       "same as default build", s.ref.embree_step_same_depth},
       {"geometry+field refit / bound", format("%.2fx", geometry_vs_bound), "<= 2x",
        geometry_vs_bound <= 2},
       {"field-only refit / bound", format("%.2fx", field_vs_bound), "<= 1.5x",
