@@ -57,8 +57,11 @@ void expect_every_key(const Json::Value& root) {
   expect_numbers(scene["ref"], {"contour_ms", "triangles", "embree_build_ms", "embree_trace_ms",
                                 "embree_step_build_ms", "embree_step_trace_ms",
                                 "depth_agree_fraction", "depth_median_rel_diff"});
-  // Embree's build for a new step (dynamic scene, low quality) traces the same depth image.
-  EXPECT_TRUE(scene["ref"]["embree_step_same_depth"].asBool());
+  // Embree's build for a new step (dynamic scene, low quality) traces the default build's depth
+  // image: bitwise where measured, here at most 0.1% of the pixels (a wrong scene or trace
+  // differs on many).
+  expect_numbers(scene["ref"], {"embree_step_depth_differs"});
+  EXPECT_LE(scene["ref"]["embree_step_depth_differs"].asUInt64(), kSide * kSide / 1000u);
   expect_numbers(scene["ref"]["trace_in_turn"], {"rounds", "tetray_ms", "embree_ms"});
   EXPECT_GT(scene["ref"]["trace_in_turn"]["tetray_ms"].asDouble(), 0.0);
   EXPECT_GT(scene["ref"]["trace_in_turn"]["embree_ms"].asDouble(), 0.0);

@@ -31,7 +31,7 @@ Json::Value reference(const ReferenceFigures& ref) {
   json["embree_same_depth"] = ref.embree_same_depth;
   json["embree_step_build_ms"] = number(ref.embree_step_build_ms);
   json["embree_step_trace_ms"] = number(ref.embree_step_trace_ms);
-  json["embree_step_same_depth"] = ref.embree_step_same_depth;
+  json["embree_step_depth_differs"] = count(ref.embree_step_depth_differs);
   json["depth_agree_fraction"] = number(ref.depth_agree_fraction);
   json["depth_median_rel_diff"] = number(ref.depth_median_rel_diff);
   json["trace_in_turn"]["rounds"] = ref.in_turn.rounds;

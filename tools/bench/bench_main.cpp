@@ -47,7 +47,7 @@ ReferenceFigures measure_reference(const GyroidTwist& scene, const render::Camer
   const EmbreeStepBuild step = step_build_with_embree(contour.triangles, camera, threads, embree);
   ref.embree_step_build_ms = step.build_ms;
   ref.embree_step_trace_ms = step.trace_ms;
-  ref.embree_step_same_depth = step.same_depth;
+  ref.embree_step_depth_differs = step.depth_differs;
   ref.depth_agree_fraction = agreement.agree_fraction;
   ref.depth_median_rel_diff = agreement.median_rel_diff;
   ref.in_turn = trace_in_turn(scene, contour.triangles, camera, threads, embree.packets);

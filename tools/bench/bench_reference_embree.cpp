@@ -216,9 +216,17 @@ const char* embree_trace_mode(bool packets) {
 
 namespace {
 
+bool same_pixel_depth(float x, float y) { return x == y || (std::isinf(x) && std::isinf(y)); }
+
 bool same_depth(const std::vector<float>& a, const std::vector<float>& b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-                    [](float x, float y) { return x == y || (std::isinf(x) && std::isinf(y)); });
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), same_pixel_depth);
+}
+
+std::size_t pixels_differing(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) differing += !same_pixel_depth(a[k], b[k]);
+  return differing;
 }
 
 double best_build_ms(EmbreeReference& embree, const TriangleSoup& triangles) {
@@ -255,7 +263,7 @@ EmbreeStepBuild step_build_with_embree(const TriangleSoup& triangles, const rend
   EmbreeStepBuild step;
   step.build_ms = best_build_ms(embree, triangles);
   step.trace_ms = best_trace_ms(embree, static_run.packets);
-  step.same_depth = same_depth(embree.depth(), static_run.depth);
+  step.depth_differs = pixels_differing(embree.depth(), static_run.depth);
   return step;
 }
 

@@ -39,7 +39,7 @@ EmbreeRun trace_with_embree(const TriangleSoup& triangles, const render::Camera&
 struct EmbreeStepBuild {
   double build_ms = 0;
   double trace_ms = 0;
-  bool same_depth = false;  // its depth image is bitwise static_run's
+  std::size_t depth_differs = 0;  // pixels whose depth is not bitwise static_run's
 };
 EmbreeStepBuild step_build_with_embree(const TriangleSoup& triangles, const render::Camera& camera,
                                        int threads, const EmbreeRun& static_run);

@@ -44,7 +44,7 @@ struct ReferenceFigures {
   bool embree_same_depth = false;   // its packet and single-ray traces gave the same depth image
   double embree_step_build_ms = 0;  // a new step's build (EmbreeBuild::new_step), the step's
   double embree_step_trace_ms = 0;  // and its trace
-  bool embree_step_same_depth = false;  // that trace's depth image is the static scene's
+  std::size_t embree_step_depth_differs = 0;  // pixels where it is not the static scene's
   double depth_agree_fraction = 0;
   double depth_median_rel_diff = 0;
   TraceInTurn in_turn;  // tetray's exact trace and Embree's, alternating: the trace targets
