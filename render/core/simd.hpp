@@ -322,21 +322,25 @@ inline void min_max_rows(const float* rows, const std::uint32_t* index, int coun
                          Float4& hi) {
 #if XSIMD_WITH_AVX512F
   const int last = count - 1;
-  auto four_rows = [&](int k) {
+  // Rows k to k + 3; `clamp`: those past the end repeat the last. Only the final step clamps:
+  // clamping every index cost the refit at 14M tets about a tenth (alternating runs).
+  auto four_rows = [&](int k, bool clamp) {
     auto row = [&](int j) {
-      return _mm_load_ps(rows + 4 * std::size_t{index[std::min(k + j, last)]});
+      return _mm_load_ps(rows + 4 * std::size_t{index[clamp ? std::min(k + j, last) : k + j]});
     };
     __m512 v = _mm512_castps128_ps512(row(0));
     v = _mm512_insertf32x4(v, row(1), 1);
     v = _mm512_insertf32x4(v, row(2), 2);
     return _mm512_insertf32x4(v, row(3), 3);
   };
-  __m512 low = four_rows(0), high = low;
-  for (int k = 4; k < count; k += 4) {
-    const __m512 v = four_rows(k);
+  __m512 low = four_rows(0, count < 4), high = low;
+  auto grow = [&](__m512 v) {
     low = _mm512_mask_min_ps(low, 0xffff, low, v);  // masked forms: see gather
     high = _mm512_mask_max_ps(high, 0xffff, high, v);
-  }
+  };
+  int k = 4;
+  for (; k + 4 <= count; k += 4) grow(four_rows(k, false));
+  if (k < count) grow(four_rows(k, true));
   const __m256 low8 = _mm256_min_ps(half_of<0>(low), half_of<1>(low));
   const __m256 high8 = _mm256_max_ps(half_of<0>(high), half_of<1>(high));
   lo = _mm_min_ps(_mm256_castps256_ps128(low8), _mm256_extractf128_ps(low8, 1));
