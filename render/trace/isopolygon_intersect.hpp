@@ -304,6 +304,10 @@ class IsopolygonIntersector {
     return false;
   }
 
+  // Without a branch on whether any ray is inside the polygon or wins: both are data the branch
+  // predictor cannot guess for small polygons, and the masked stores of a lane batch that wins
+  // nothing write nothing. The tiled frame without them (AVX-512, alternating runs, best of 5): 1M
+  // tets 6.44 -> 5.65 ms, 4M 11.57 -> 10.45 ms, 14M 19.26 -> 17.97 ms, the same images.
   bool intersect_lanes(const PolygonSetup& s, const PolygonHit& id, int base) {
     if constexpr (kStats) stats_.ray_isopolygon_tests += W;
     const F dx = simd::load(packet_.dx + base, F{}), dy = simd::load(packet_.dy + base, F{}),
@@ -315,7 +319,6 @@ class IsopolygonIntersector {
       hi = simd::vmax(hi, v);
     }
     const auto inside = simd::either(lo >= F(0.0f), hi <= F(0.0f));
-    if (!simd::any(inside)) return false;
     const F t = distance(s, dx, dy, dz);
     const F tmax = simd::load(packet_.tmax + base, F{});
     auto ahead = simd::both(inside, t > F(0.0f));
@@ -326,7 +329,6 @@ class IsopolygonIntersector {
     const auto tie_won =
         simd::both(simd::both(ahead, t == tmax), simd::greater(packet_.key + base, id.key, F{}));
     const auto wins = simd::either(simd::both(ahead, t < tmax), tie_won);
-    if (!simd::any(wins)) return false;
     const auto first_hit = simd::both(wins, tmax == F(std::numeric_limits<float>::infinity()));
     const int first_hits = std::popcount(simd::bits(first_hit));
     packet_.rays_without_hit -= first_hits;
@@ -339,7 +341,7 @@ class IsopolygonIntersector {
     simd::store_where(wins, F(s.normal.z), packet_.nz + base);
     if ((packet_.batch_missing[base / W] -= first_hits) == 0)
       packet_.batch_far[base / W] = simd::max_of(simd::load(packet_.tmax + base, F{}));
-    return true;
+    return simd::any(wins);
   }
 
   static F edge_value(Vec3f n, F dx, F dy, F dz) { return n.x * dx + n.y * dy + n.z * dz; }
