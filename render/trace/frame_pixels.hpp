@@ -138,29 +138,45 @@ void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuf
   if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
   alignas(16) static constexpr float kAlphaLane[4] = {0, 0, 0, 1};
   const simd::Mask4 alpha = simd::Float4::load_aligned(kAlphaLane) != simd::Float4(0.0f);
-  write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    for (int c = 0; c < columns; ++c) {
-      const int r = RayPacket<S>::index(row, c);
-      const bool hit = packet.tet[r] >= 0;
-      out.depth[c] = hit ? depth[r] : kInf;
-      out.hit[c] = hit ? packet.key[r] : kNoHit;
-      if constexpr (kStats) stats.hits += hit;
-      float* rgba = &out.rgba[4 * c];
-      if (f.surface_colors) {
-        // The table's color times the light, its alpha as it is: what shade_color forms.
-        const simd::Float4 color = simd::Float4::load_aligned(f.iso_rgba[packet.iso[r] + 1]);
-        const simd::Float4 lit_color = color * simd::Float4(hit ? light[r] : 0.0f);
-        xsimd::select(alpha, color, lit_color).store_aligned(rgba);
-      } else if (hit) {
-        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
-                    packet.tet[r], packet.iso[r], light[r], rgba);
-      } else {
-        std::fill_n(rgba, 4, 0.0f);
+  // Each row is composed a block of columns at a time (their rays lie side by side in the
+  // packet), its depths, keys and light factors first, then each pixel's color by color_of(ray,
+  // light, rgba), chosen once per packet: with the test of the table per pixel and the ray's
+  // index per column, the tiled frame at 1M tets was 1-1.5% slower (alternating frames).
+  const auto compose = [&](auto&& color_of) {
+    write_rows<S>(f, x0, y0, image, [&](int row, int columns, PixelRow<S>& out) {
+      constexpr float kInf = std::numeric_limits<float>::infinity();
+      constexpr int block = RayPacket<S>::kBlockColumns;
+      for (int c0 = 0; c0 < columns; c0 += block) {
+        const int r0 = RayPacket<S>::index(row, c0);
+        alignas(16) float lit[block];
+        for (int p = 0; p < block; ++p) {
+          const bool hit = packet.tet[r0 + p] >= 0;
+          out.depth[c0 + p] = hit ? depth[r0 + p] : kInf;
+          out.hit[c0 + p] = hit ? packet.key[r0 + p] : kNoHit;
+          lit[p] = hit ? light[r0 + p] : 0.0f;
+          if constexpr (kStats) stats.hits += hit;
+        }
+        for (int p = 0; p < block; ++p) color_of(r0 + p, lit[p], &out.rgba[4 * (c0 + p)]);
       }
-    }
-    if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
-  });
+      if constexpr (kStats) stats.rays += static_cast<std::uint64_t>(columns);
+    });
+  };
+  if (f.surface_colors) {
+    // The table's color times the light, its alpha as it is: what shade_color forms.
+    compose([&](int r, float lit, float* rgba) {
+      const simd::Float4 color = simd::Float4::load_aligned(f.iso_rgba[packet.iso[r] + 1]);
+      xsimd::select(alpha, color, color * simd::Float4(lit)).store_aligned(rgba);
+    });
+  } else {
+    compose([&](int r, float lit, float* rgba) {
+      if (packet.tet[r] < 0) {
+        std::fill_n(rgba, 4, 0.0f);
+      } else {
+        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
+                    packet.tet[r], packet.iso[r], lit, rgba);
+      }
+    });
+  }
 }
 
 // A packet whose frustum misses the whole volume: background, without setting up its rays.
