@@ -47,7 +47,7 @@ inline std::span<std::int32_t> row_of(std::int32_t& value) { return {&value, 1};
 // ranks.
 template <typename V, typename Combine>
 int combine_shared(const render::TetVolume& volume, std::span<const std::uint32_t> points,
-                   std::vector<V>& per_vertex, Combine&& combine) {
+                   render::LargeArray<V>& per_vertex, Combine&& combine) {
   V probe{};  // per_vertex may be empty
   using T = typename decltype(row_of(probe))::element_type;
   const std::size_t width = row_of(probe).size();
@@ -90,9 +90,9 @@ std::string SharedGradients::match(const render::TetVolume& volume, const Points
 }
 
 std::string SharedGradients::compute(render::TetVolume& volume) const {
-  std::vector<render::VertexExponents> exponents;
-  std::vector<std::int32_t> tet_counts;
-  std::vector<render::VertexSums> sums;
+  render::LargeArray<render::VertexExponents> exponents;
+  render::LargeArray<std::int32_t> tet_counts;
+  render::LargeArray<render::VertexSums> sums;
   render::gradient_exponents(volume, exponents, tet_counts);
   const auto max = [&](auto values, std::size_t width) { return shared_.max(values, width); };
   const auto sum = [&](auto values, std::size_t width) { return shared_.sum(values, width); };

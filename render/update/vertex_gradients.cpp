@@ -74,50 +74,81 @@ Grid grid_of(const VertexExponents& e, std::int32_t tet_count) {
   return grid;
 }
 
+constexpr std::size_t kChunkTets = 1 << 14;
+
+std::size_t chunk_count(const TetVolume& volume) {
+  return (volume.tets.size() + kChunkTets - 1) / kChunkTets;
+}
+
+std::span<const Tet> chunk_tets(const TetVolume& volume, std::size_t c) {
+  return std::span(volume.tets)
+      .subspan(c * kChunkTets, std::min(kChunkTets, volume.tets.size() - c * kChunkTets));
+}
+
+// The first vertex chunk c owns, for each chunk, then one past the last vertex: one past the
+// largest vertex the chunks before it use, so the chunks' ranges are disjoint.
+std::vector<std::int32_t> owned_vertex_starts(const TetVolume& volume) {
+  const std::size_t chunks = chunk_count(volume);
+  std::vector<std::int32_t> first(chunks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::int32_t largest = -1;
+    for (const Tet& tet : chunk_tets(volume, c))
+      for (const std::int32_t k : tet.v) largest = std::max(largest, k);
+    first[c + 1] = largest + 1;
+  });
+  for (std::size_t c = 1; c <= chunks; ++c) first[c] = std::max(first[c], first[c - 1]);
+  return first;
+}
+
+// Where the pairs (vertex, tet's terms) of the vertices chunk c does not own start in one array
+// that holds every chunk's in chunk order, then their count. Counted first, so that the array is
+// allocated once, on huge pages: grown per chunk on 4 KiB pages, faulted in one by one, it was
+// most of the time of the gradients at 14M tets.
+std::vector<std::size_t> waiting_starts(const TetVolume& volume,
+                                        std::span<const std::int32_t> first) {
+  const std::size_t chunks = first.size() - 1;
+  std::vector<std::size_t> start(chunks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::size_t waiting = 0;
+    for (const Tet& tet : chunk_tets(volume, c))
+      for (const std::int32_t k : tet.v) waiting += k < first[c];
+    start[c + 1] = waiting;
+  });
+  for (std::size_t c = 1; c <= chunks; ++c) start[c] += start[c - 1];
+  return start;
+}
+
 // Calls add(k, prepare(terms)) for each tet's vertices k: what depends on the tet alone is
-// prepared once for its four vertices. In parallel over contiguous chunks of tets: chunk c owns
-// the vertices [first[c], first[c + 1]), first[c] being one past the largest vertex the chunks
-// before it use, so the ranges are disjoint; a chunk adds to its own vertices at once and keeps
+// prepared once for its four vertices. In parallel over contiguous chunks of tets, each owning
+// a range of vertices (owned_vertex_starts): a chunk adds to its own vertices at once and keeps
 // the others' pairs, added after all chunks. The vertices are numbered in the tets' first-use
 // order, so few pairs wait; and the sums are exact, so the order of the adds changes nothing.
 template <typename Prepare, typename Add>
 void for_each_tet_vertex(const TetVolume& volume, Prepare&& prepare, Add&& add) {
   using Prepared = decltype(prepare(TetTerms{}));
-  constexpr std::size_t kChunkTets = 1 << 14;
-  const std::size_t chunks = (volume.tets.size() + kChunkTets - 1) / kChunkTets;
-  const auto tets_of = [&](std::size_t c) {
-    return std::span(volume.tets)
-        .subspan(c * kChunkTets, std::min(kChunkTets, volume.tets.size() - c * kChunkTets));
-  };
-  std::vector<std::int32_t> first(chunks + 1, 0);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
-    std::int32_t largest = -1;
-    for (const Tet& tet : tets_of(c))
-      for (const std::int32_t k : tet.v) largest = std::max(largest, k);
-    first[c + 1] = largest + 1;
-  });
-  for (std::size_t c = 1; c <= chunks; ++c) first[c] = std::max(first[c], first[c - 1]);
-  std::vector<std::vector<std::pair<std::int32_t, Prepared>>> waiting(chunks);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
-    for (const Tet& tet : tets_of(c)) {
+  const std::vector<std::int32_t> first = owned_vertex_starts(volume);
+  const std::vector<std::size_t> waiting_start = waiting_starts(volume, first);
+  LargeArray<std::pair<std::int32_t, Prepared>> waiting(waiting_start.back());
+  tbb::parallel_for(std::size_t{0}, first.size() - 1, [&](std::size_t c) {
+    auto* next_waiting = waiting.data() + waiting_start[c];
+    for (const Tet& tet : chunk_tets(volume, c)) {
       const Prepared prepared = prepare(tet_terms(volume, tet));
       for (const std::int32_t k : tet.v) {
         if (k >= first[c]) {
           add(k, prepared);
         } else {
-          waiting[c].emplace_back(k, prepared);
+          *next_waiting++ = {k, prepared};
         }
       }
     }
   });
-  for (const auto& pairs : waiting)
-    for (const auto& [k, prepared] : pairs) add(k, prepared);
+  for (const auto& [k, prepared] : waiting) add(k, prepared);
 }
 
 }  // namespace
 
-void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents,
-                        std::vector<std::int32_t>& tet_counts) {
+void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
+                        LargeArray<std::int32_t>& tet_counts) {
   exponents.assign(volume.vertices.size(), {kNoTerm, kNoTerm, kNoTerm, kNoTerm});
   tet_counts.assign(volume.vertices.size(), 0);
   for_each_tet_vertex(
@@ -134,8 +165,8 @@ void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& e
 }
 
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, std::vector<VertexSums>& sums) {
-  std::vector<Grid> grids(volume.vertices.size());
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums) {
+  LargeArray<Grid> grids(volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grids.size()), [&](const auto& block) {
     for (std::size_t k = block.begin(); k != block.end(); ++k) {
       grids[k] = grid_of(exponents[k], tet_counts[k]);
@@ -174,9 +205,9 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
 }
 
 void compute_vertex_gradients(TetVolume& volume) {
-  std::vector<VertexExponents> exponents;
-  std::vector<std::int32_t> tet_counts;
-  std::vector<VertexSums> sums;
+  LargeArray<VertexExponents> exponents;
+  LargeArray<std::int32_t> tet_counts;
+  LargeArray<VertexSums> sums;
   gradient_exponents(volume, exponents, tet_counts);
   gradient_sums(volume, exponents, tet_counts, sums);
   gradients_from_sums(volume, exponents, sums);

@@ -36,14 +36,17 @@ inline constexpr std::int16_t kNoTerm = std::numeric_limits<std::int16_t>::min()
 using VertexSums = std::array<double, 4>;
 inline constexpr int kLeastExponent = -1021;
 
+// The per-vertex arrays of the passes are large arrays (huge pages): at 14M tets they hold about
+// 100 MB per update, and on 4 KiB pages their faults cost more than the passes' arithmetic.
+
 // Pass 1: `exponents` and `tet_counts` get one entry per vertex, from this rank's tets.
-void gradient_exponents(const TetVolume& volume, std::vector<VertexExponents>& exponents,
-                        std::vector<std::int32_t>& tet_counts);
+void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
+                        LargeArray<std::int32_t>& tet_counts);
 
 // Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids that
 // `exponents` and `tet_counts` (over all ranks) set.
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, std::vector<VertexSums>& sums);
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums);
 
 // Fills volume.gradients from the sums: the gradient sum over the |det| sum (zero for a vertex
 // of flat tets only).

@@ -62,23 +62,23 @@ bool same_bits(const std::vector<render::Vec3f>& a, const std::vector<render::Ve
 // same vertices would find them: pass 1 on each, the maximum of their exponents and the sum of
 // their tet counts, pass 2 on each with those, the sums added.
 struct Sums {
-  std::vector<render::VertexExponents> exponents;
-  std::vector<render::VertexSums> sums;
+  render::LargeArray<render::VertexExponents> exponents;
+  render::LargeArray<render::VertexSums> sums;
 };
 
 Sums sums_of_two_parts(const render::TetVolume& volume, std::size_t split) {
   render::TetVolume first = volume, second = volume;
   first.tets.resize(split);
   second.tets.erase(second.tets.begin(), second.tets.begin() + static_cast<std::ptrdiff_t>(split));
-  std::vector<render::VertexExponents> e1, e2;
-  std::vector<std::int32_t> n1, n2;
+  render::LargeArray<render::VertexExponents> e1, e2;
+  render::LargeArray<std::int32_t> n1, n2;
   render::gradient_exponents(first, e1, n1);
   render::gradient_exponents(second, e2, n2);
   for (std::size_t k = 0; k < e1.size(); ++k) {
     for (int c = 0; c < 4; ++c) e1[k][c] = std::max(e1[k][c], e2[k][c]);
     n1[k] += n2[k];
   }
-  std::vector<render::VertexSums> s1, s2;
+  render::LargeArray<render::VertexSums> s1, s2;
   render::gradient_sums(first, e1, n1, s1);
   render::gradient_sums(second, e1, n1, s2);
   for (std::size_t k = 0; k < s1.size(); ++k)
@@ -154,7 +154,7 @@ TEST(VertexGradients, SumsIndependentOfTetOrderAndSplitAtAHighTetCount) {
   for (std::int32_t i = 0; i < kTets; ++i) {
     volume.tets.push_back({{0, 1, 2 + i, 2 + (i + 1) % kTets}});
   }
-  const std::vector<render::VertexSums> whole = sums_of_two_parts(volume, 0).sums;
+  const render::LargeArray<render::VertexSums> whole = sums_of_two_parts(volume, 0).sums;
   for (const std::size_t split : {std::size_t{1}, std::size_t{1777}, std::size_t{2500}}) {
     EXPECT_EQ(sums_of_two_parts(volume, split).sums, whole) << split;
   }
