@@ -9,8 +9,10 @@ if [ "${1:-}" = "--sanitize" ]; then
   TETRAY_SETUP_INSTALL_ONLY=1 scripts/setup.sh
   # -O1, as AddressSanitizer's documentation suggests: GCC compiles the kernels of the three
   # instruction sets with the sanitizers in half the time it takes at -O2, most of CI's time.
+  # -g1: line tables only, which is all a sanitizer's stack trace reads (file:line stays); a
+  # kernel file compiled in 25 s instead of 37 with -g, a test file in 7 s instead of 9.
   cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETRAY_SANITIZE=ON \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DTETRAY_BUILD_BENCHMARKS=OFF ${TETRAY_CMAKE_ARGS:-}
   cmake --build build-asan
   # Open MPI's own allocations are reported as leaks by LeakSanitizer; the leak check is
