@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# The README's main command: install and build (scripts/setup.sh), then run the deforming,
-# heating cantilever beam of configs/demo.yaml on two ranks. Images, the Cinema database and
-# the timing log land in out/demo.
+# The README's main command: install and build only what the demo needs (scripts/setup.sh
+# --demo: the library and the mini-solver, no tests or tools), then run the deforming, heating
+# cantilever beam of configs/demo.yaml on two ranks. Images, the Cinema database and the timing
+# log land in out/demo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh --demo
 mpi_flags=(--oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi_flags+=(--allow-run-as-root)
 time mpirun -np 2 "${mpi_flags[@]}" build/bin/tetray-minisolver configs/demo.yaml
