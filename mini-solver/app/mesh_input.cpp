@@ -1,6 +1,6 @@
 #include "mesh_input.hpp"
 
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace minisolver {
 namespace {

@@ -1,5 +1,5 @@
 // The global mesh a run starts from: the docs/architecture.md §6 box through tetray::make_box_mesh
-// (the benchmark's scene generator, tools/scenes), or the mini-solver's own beam and shell
+// (the scene library shared with the benchmarks, scenes/), or the mini-solver's own beam and shell
 // generators; the tets of the stiff region, if any, are material 1.
 #pragma once
 

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "scenes/box_mesh.hpp"
 #include "shared_dir.hpp"
 #include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 namespace {

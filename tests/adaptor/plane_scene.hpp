@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "scenes/box_mesh.hpp"
 #include "tetray/adaptor.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 

@@ -13,9 +13,9 @@
 #include <span>
 #include <string>
 
+#include "scenes/box_mesh.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 

@@ -15,12 +15,12 @@
 
 #include "render/update/vertex_gradients.hpp"
 #include "render/update/volume_update.hpp"
+#include "scenes/box_mesh.hpp"
 #include "shared_dir.hpp"
 #include "shared_gradients.hpp"
 #include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 namespace {

@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "scenes/box_mesh.hpp"
 #include "tie_keys.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray {
 namespace {

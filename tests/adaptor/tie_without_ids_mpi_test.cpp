@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "scenes/box_mesh.hpp"
 #include "shared_dir.hpp"
 #include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::testing {
 namespace {

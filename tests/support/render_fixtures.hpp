@@ -13,7 +13,7 @@
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/tet_volume.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::test {
 

@@ -5,9 +5,9 @@
 
 #include <cstdio>
 
+#include "scenes/box_mesh.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
-#include "tools/scenes/box_mesh.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray {

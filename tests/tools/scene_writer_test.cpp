@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "scenes/box_mesh.hpp"
 #include "support/scratch_dir.hpp"
-#include "tools/scenes/box_mesh.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::testing {

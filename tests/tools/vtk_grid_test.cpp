@@ -11,8 +11,8 @@
 
 #include <fstream>
 
+#include "scenes/box_mesh.hpp"
 #include "support/scratch_dir.hpp"
-#include "tools/scenes/box_mesh.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::vtkio {

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "render/core/stopwatch.hpp"
+#include "scenes/box_mesh.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/adaptor_bench/encode_figures.hpp"
 #include "tools/bench_common/json_file.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "render/trace/camera.hpp"
+#include "scenes/box_mesh.hpp"
 #include "tools/bench_common/image_error.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

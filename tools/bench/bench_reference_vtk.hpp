@@ -9,7 +9,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

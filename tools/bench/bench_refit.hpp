@@ -5,7 +5,7 @@
 
 #include "bench_results.hpp"
 #include "render/trace/camera.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

@@ -69,9 +69,11 @@ void print_refit(const RefitFigures& r) {
 }
 
 void print_targets(const SceneFigures& s) {
-  std::printf("  targets (2 threads; issue 3's defined on n = %d%s, issue 21's per size%s)\n",
-              kTargetScene, s.n == kTargetScene ? "" : ", shown for reference",
-              s.n == size_targets(s.n).n ? "" : ", the nearest shown for reference");
+  std::printf(
+      "  targets (2 threads; the fixed ones defined on n = %d%s, those against the reference per "
+      "size%s)\n",
+      kFixedTargetScene, s.n == kFixedTargetScene ? "" : ", shown for reference",
+      s.n == reference_targets(s.n).n ? "" : ", the nearest shown for reference");
   for (const TargetCheck& check : check_targets(s))
     std::printf("    %-34s %-20s %-14s %s\n", check.name.c_str(), check.measured.c_str(),
                 check.target.c_str(), check.pass ? "PASS" : "MISS");

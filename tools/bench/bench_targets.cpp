@@ -15,9 +15,9 @@ std::string format(const char* pattern, double value) {
 
 }  // namespace
 
-const SizeTargets& size_targets(int n) {
-  const SizeTargets* nearest = &kSizeTargets[0];
-  for (const SizeTargets& t : kSizeTargets)
+const ReferenceTargets& reference_targets(int n) {
+  const ReferenceTargets* nearest = &kReferenceTargets[0];
+  for (const ReferenceTargets& t : kReferenceTargets)
     if (std::abs(t.n - n) < std::abs(nearest->n - n)) nearest = &t;
   return *nearest;
 }
@@ -30,7 +30,7 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
   const double sah_vs_bih = s.tetray.build_sah_ms / s.tetray.build_bih_ms;
   const double geometry_vs_bound = s.refit.geometry_ms / s.refit.bound_geometry_ms;
   const double field_vs_bound = s.refit.field_only_ms / s.refit.bound_field_only_ms;
-  const SizeTargets& sized = size_targets(s.n);
+  const ReferenceTargets& sized = reference_targets(s.n);
   const double default_vs_embree = s.ref.in_turn.tetray_ms / s.ref.in_turn.embree_ms;
   const double default_step_speedup = s.refit.ref_step_total_ms / s.refit.step_total_default_ms;
   const bool rebuilt = s.refit.strong_deformation_kind == "rebuild";

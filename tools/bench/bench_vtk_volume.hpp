@@ -13,7 +13,7 @@
 
 #include "bench_dvr_study.hpp"
 #include "render/trace/camera.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

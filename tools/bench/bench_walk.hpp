@@ -9,7 +9,7 @@
 
 #include "render/trace/camera.hpp"
 #include "render/walk/volume_render.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

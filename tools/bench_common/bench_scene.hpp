@@ -9,7 +9,7 @@
 #include "render/trace/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {
 

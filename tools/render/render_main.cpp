@@ -1,166 +1,124 @@
-// tetray-render: ray-traces isosurfaces of one VTK grid of tets into an EXR or PNG. The
-// same stages as an in-situ step, run once: read -> check -> load (BVH build) ->
-// trace -> write.
-#include <tbb/task_arena.h>
+// tetray-render: ray-traces isosurfaces of one VTK grid of tets into an EXR or PNG. The grid goes
+// through the adaptor like one step of a solver's run (tetray-replay's pipeline, on one rank): the
+// adaptor checks the mesh, leaves out the ghost cells that are not drawn, builds the BVH, traces
+// and writes. The tool only reads the file, chooses the camera and names the image.
+#include <mpi.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <numeric>
+#include <span>
+#include <vector>
 
-#include "render/core/stopwatch.hpp"
-#include "render/image/image_write.hpp"
-#include "render/trace/camera.hpp"
-#include "render/trace/iso_palette.hpp"
 #include "render/trace/trace.hpp"
-#include "render/update/volume_update.hpp"
-#include "render/volume/mesh_check.hpp"
+#include "tetray/adaptor.hpp"
+#include "tools/render/render_camera.hpp"
+#include "tools/render/render_config.hpp"
 #include "tools/render/render_options.hpp"
+#include "tools/render/scratch_output.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::tools {
 namespace {
 
-// vtkGhostType bits of cells that are not drawn: DUPLICATECELL and HIDDENCELL.
-constexpr std::uint8_t kHiddenGhostBits = 1 | 32;
-
-// Looking at the mesh from the +x, +y, +z octant, slightly above, like a default 3D view.
-constexpr render::Vec3d kFitViewDirection{1.0, 0.7, 1.3};
-
-const std::vector<double>* find_field(const vtkio::TetGrid& grid, const RenderOptions& options,
-                                      std::string& error) {
-  const auto found = grid.point_fields.find(options.field);
-  if (found != grid.point_fields.end()) return &found->second;
+bool has_field(const vtkio::TetGrid& grid, const RenderOptions& options, std::string& error) {
+  if (grid.point_fields.count(options.field) != 0) return true;
   error = "'" + options.input + "' has no scalar point field '" + options.field + "'; it has: ";
   if (grid.point_fields.empty()) error += "none";
   for (auto it = grid.point_fields.begin(); it != grid.point_fields.end(); ++it) {
     error += (it == grid.point_fields.begin() ? "'" : ", '") + it->first + "'";
   }
-  return nullptr;
+  return false;
 }
 
-void point_bounds(const std::vector<double>& xyz, render::Vec3d& lo, render::Vec3d& hi) {
-  lo = {xyz[0], xyz[1], xyz[2]};
-  hi = lo;
-  for (std::size_t p = 0; p < xyz.size(); p += 3) {
-    const render::Vec3d v{xyz[p], xyz[p + 1], xyz[p + 2]};
-    lo = render::min(lo, v);
-    hi = render::max(hi, v);
-  }
-}
-
-// The explicit camera of --eye (looking at --look-at or the mesh center), else one that fits
-// the mesh bounds. Empty `error` unless the view is degenerate.
-render::Camera make_camera(const RenderOptions& options, const vtkio::TetGrid& grid,
-                           std::string& error) {
-  render::Vec3d lo, hi;
-  point_bounds(grid.points, lo, hi);
-  const render::Vec3d up = options.up.value_or(render::Vec3d{0, 1, 0});
-  render::Camera camera = options.eye
-                              ? render::Camera{*options.eye,
-                                               options.look_at.value_or(0.5 * (lo + hi)),
-                                               up,
-                                               options.fov_deg,
-                                               options.width,
-                                               options.height}
-                              : render::fit_camera(lo, hi, kFitViewDirection, up, options.fov_deg,
-                                                   options.width, options.height);
-  const render::Vec3d forward = camera.look_at - camera.eye;
-  if (render::length(forward) == 0) {
-    error = "the camera's eye and look-at point coincide";
-  } else if (render::length(
-                 render::cross(render::normalize(forward), render::normalize(camera.up))) < 1e-6) {
-    error = "the camera's up direction is parallel to its view direction (or zero)";
-  }
-  return camera;
-}
-
-std::vector<render::IsoSurface> iso_surfaces(const std::vector<double>& isovalues) {
-  std::vector<render::IsoSurface> surfaces;
-  for (std::size_t k = 0; k < isovalues.size(); ++k) {
-    surfaces.push_back({static_cast<float>(isovalues[k]), render::default_iso_color(k)});
-  }
-  return surfaces;
-}
-
-// Tets to render: all that passed the mesh check, minus hidden and duplicate ghost cells.
-std::vector<std::uint8_t> tets_to_keep(const vtkio::TetGrid& grid, std::vector<std::uint8_t> keep) {
-  keep.resize(grid.tets.size() / 4, 1);
-  for (std::size_t t = 0; t < grid.ghost.size(); ++t) {
-    if (grid.ghost[t] & kHiddenGhostBits) keep[t] = 0;
-  }
-  return keep;
-}
-
-// Everything the trace needs, read and checked.
-struct Scene {
-  vtkio::TetGrid grid;
-  const std::vector<double>* field = nullptr;
-  render::PointSource points;
-  render::FieldSource values;
-  std::vector<std::uint8_t> keep;
-  render::Camera camera;
-};
-
-bool prepare_scene(const RenderOptions& options, Scene& scene, std::string& error) {
-  if (!vtkio::read_grid(options.input, scene.grid, error)) return false;
-  scene.field = find_field(scene.grid, options, error);
-  if (!scene.field) return false;
-  if (scene.grid.tets.empty()) {
+// The grid, with the field to draw and at least one tet, and the camera that looks at it.
+bool read_scene(const RenderOptions& options, vtkio::TetGrid& grid, render::Camera& camera,
+                std::string& error) {
+  if (!vtkio::read_grid(options.input, grid, error)) return false;
+  if (!has_field(grid, options, error)) return false;
+  if (grid.tets.empty()) {
     error = "'" + options.input + "' has no tets";
     return false;
   }
-  scene.camera = make_camera(options, scene.grid, error);
-  if (!error.empty()) return false;
-  scene.points = {scene.grid.points.data(), render::ScalarKind::f64, nullptr,
-                  render::ScalarKind::f64, scene.grid.points.size() / 3};
-  scene.values = {scene.field->data(), render::ScalarKind::f64, scene.field->size()};
-  const render::MeshCheck check = render::check_mesh(scene.grid.tets, scene.points, scene.values,
-                                                     render::NonFinitePolicy::error, scene.keep);
-  if (!check.error.empty()) {
-    error = "'" + options.input + "': " + check.error;
-    return false;
-  }
-  scene.keep = tets_to_keep(scene.grid, std::move(scene.keep));
-  return true;
+  camera = make_camera(options, grid.points, error);
+  return error.empty();
 }
 
-// Builds the BVH and traces in an arena of the requested thread count; returns the trace time.
-double trace_scene(const RenderOptions& options, const Scene& scene, render::Framebuffer& image) {
-  const std::vector<render::IsoSurface> surfaces = iso_surfaces(options.isovalues);
-  render::TraceOptions trace_options;
-  trace_options.packet = options.packet;
-  double trace_ms = 0;
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    render::TetVolume volume;
-    render::Bvh bvh;
-    render::load_volume(volume, bvh, scene.grid.tets, scene.keep, {}, scene.points, scene.values,
-                        render::UpdatePolicy{});
-    const render::Stopwatch watch;
-    image = render::trace(volume, bvh, scene.camera, surfaces, trace_options);
-    trace_ms = watch.ms();
-  });
-  return trace_ms;
+// The grid's views, as the VTK bridge makes them (tetray/vtk_bridge.hpp), with the one thing the
+// bridge has no room for: the tets' positions in the file as their global ids, so that an exact
+// depth tie goes to the tet that comes first in the file, as it always did in tetray-render. The
+// keys the bridge leaves to the adaptor (from the corners' coordinates) pick the other tet at
+// some ties (an axis-aligned view of a structured mesh meets many) and change those pixels.
+Status execute_grid(Adaptor& adaptor, const vtkio::TetGrid& grid) {
+  std::vector<std::int64_t> ids(grid.tets.size() / 4);
+  std::iota(ids.begin(), ids.end(), std::int64_t{0});
+  MeshView mesh;
+  mesh.points = PointsView::of(std::span<const double>(grid.points));
+  mesh.tets = TetsView::of(std::span<const std::int64_t>(grid.tets));
+  mesh.tets.global_ids = ids.data();
+  if (!grid.ghost.empty()) mesh.tets.ghost = grid.ghost.data();
+  std::vector<FieldView> fields;
+  for (const auto& [name, values] : grid.point_fields) {
+    fields.push_back(FieldView::of(name, std::span<const double>(values)));
+  }
+  return adaptor.execute(0, 0.0, mesh, fields);
+}
+
+// One step of an adaptor on this process alone (each process of an MPI launch renders the whole
+// file, as the tool always did), finalized so that the image is on disk.
+bool render_step(const std::string& config, const vtkio::TetGrid& grid, std::string& error) {
+  Status status;
+  const std::unique_ptr<Adaptor> adaptor = Adaptor::create_from_yaml(MPI_COMM_SELF, config, status);
+  if (adaptor) status = execute_grid(*adaptor, grid);
+  // Partial: the one scene was skipped (its field unusable), so there is no image.
+  if (adaptor && status.ok()) status = adaptor->finalize();
+  if (status.ok()) return true;
+  error = status.message;
+  return false;
 }
 
 bool render_file(const RenderOptions& options, std::string& error) {
-  Scene scene;
-  if (!prepare_scene(options, scene, error)) return false;
-  render::Framebuffer image;
-  const double trace_ms = trace_scene(options, scene, image);
-
-  const render::Stopwatch writing;
-  const render::WriteResult written = render::write_image(image, options.output);
-  if (!written.ok) {
-    error = written.message;
+  vtkio::TetGrid grid;
+  render::Camera camera;
+  if (!read_scene(options, grid, camera, error)) return false;
+  ScratchOutput scratch;
+  if (!scratch.create(options.output, error)) return false;
+  if (!render_step(render_config(options, camera, scratch.directory()), grid, error)) {
+    error = "'" + options.input + "': " + error;
     return false;
   }
-  const auto hits = std::count_if(image.hit.begin(), image.hit.end(),
-                                  [](std::uint32_t h) { return h != render::kNoHit; });
-  std::printf("tetray-render: %dx%d, %zu tets, trace %.1f ms, %td hit pixels, wrote %s (%.1f ms)\n",
-              image.width, image.height, scene.grid.tets.size() / 4, trace_ms, hits,
-              options.output.c_str(), writing.ms());
+  StepFigures figures;
+  if (!scratch.read_figures(figures, error)) return false;
+  if (!scratch.move_image(kRenderScene, options.output, error)) return false;
+  std::printf(
+      "tetray-render: %dx%d, %zu tets, trace %.1f ms, %llu hit pixels, wrote %s (%.1f ms)\n",
+      options.width, options.height, grid.tets.size() / 4, figures.trace_ms,
+      static_cast<unsigned long long>(figures.hits), options.output.c_str(), figures.write_ms);
   return true;
+}
+
+// The adaptor's config has no key for the ray packets, so --packet cannot reach the trace; every
+// packet size gives bitwise the same image (render/trace/trace.hpp), only the time differs.
+void note_unused_packet(const RenderOptions& options) {
+  const render::PacketSize traced = render::TraceOptions{}.packet;
+  if (options.packet == traced) return;
+  std::fprintf(stderr,
+               "tetray-render: note: --packet %s is not passed on (the adaptor's config has no "
+               "packet key): traced with %s packets, the same image\n",
+               render::to_string(options.packet), render::to_string(traced));
+}
+
+int render_and_report(const RenderOptions& options) {
+  note_unused_packet(options);
+  std::string error;
+  try {
+    if (render_file(options, error)) return 0;
+  } catch (const std::exception& e) {
+    error = std::string("unexpected failure: ") + e.what();
+  }
+  std::fprintf(stderr, "tetray-render: error: %s\n", error.c_str());
+  return 1;
 }
 
 }  // namespace
@@ -171,12 +129,9 @@ int main(int argc, char** argv) {
   if (const auto exit_code = tetray::tools::parse_render_options(argc, argv, options)) {
     return *exit_code;
   }
-  std::string error;
-  try {
-    if (tetray::tools::render_file(options, error)) return 0;
-  } catch (const std::exception& e) {
-    error = std::string("unexpected failure: ") + e.what();
-  }
-  std::fprintf(stderr, "tetray-render: error: %s\n", error.c_str());
-  return 1;
+  // After the command line: --help and usage errors need no MPI.
+  MPI_Init(&argc, &argv);
+  const int code = tetray::tools::render_and_report(options);
+  MPI_Finalize();
+  return code;
 }

@@ -1,5 +1,6 @@
 #include "tools/render/render_options.hpp"
 
+#include "render/core/value_bounds.hpp"
 #include "render/image/image_write.hpp"
 
 #include <CLI/CLI.hpp>
@@ -125,8 +126,11 @@ void check_isovalues(const std::vector<double>& isovalues) {
     throw CLI::ValidationError("--iso", "at most " + std::to_string(render::kMaxIsovalues) +
                                             " isovalues, got " + std::to_string(isovalues.size()));
   }
-  if (std::any_of(isovalues.begin(), isovalues.end(), [](double v) { return !std::isfinite(v); })) {
-    throw CLI::ValidationError("--iso", "isovalues must be finite numbers");
+  // No field value beyond kMaxFieldValue passes the mesh check, so no larger isovalue can be
+  // drawn; the adaptor's config refuses one too.
+  const auto drawable = [](double v) { return std::abs(v) <= render::kMaxFieldValue; };
+  if (!std::all_of(isovalues.begin(), isovalues.end(), drawable)) {
+    throw CLI::ValidationError("--iso", "isovalues must be finite numbers within +-1e30");
   }
 }
 

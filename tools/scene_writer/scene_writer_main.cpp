@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::tools {

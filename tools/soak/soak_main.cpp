@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "render/core/stopwatch.hpp"
+#include "scenes/box_mesh.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/bench_common/json_file.hpp"
-#include "tools/scenes/box_mesh.hpp"
 #include "tools/soak/process_usage.hpp"
 
 namespace {

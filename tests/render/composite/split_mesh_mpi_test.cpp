@@ -23,8 +23,8 @@
 #include "render/trace/shadow_rays.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
+#include "scenes/box_mesh.hpp"
 #include "support/render_fixtures.hpp"
-#include "tools/scenes/box_mesh.hpp"
 
 namespace tetray::render {
 namespace {

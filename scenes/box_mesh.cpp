@@ -1,4 +1,4 @@
-#include "tools/scenes/box_mesh.hpp"
+#include "scenes/box_mesh.hpp"
 
 #include <cmath>
 
