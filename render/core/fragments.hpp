@@ -36,7 +36,7 @@ namespace tetray::render {
 // volume runs, whose colors are sums that a rank count splits differently (the over operator
 // is not associative in floating point): kept in double up to the final image, the merged
 // colors of any split differ by about 1e-16 relative, far below the float framebuffer's and
-// the written files' rounding (docs/architecture.md §8 says what that guarantees).
+// the written files' rounding (the comment at the top of this file says what that guarantees).
 template <typename Real>
 struct BasicFragment {
   float depth_in = 0, depth_out = 0;  // view-axis depths
