@@ -141,17 +141,19 @@ std::vector<Step> parse_path(const std::string& path) {
   return steps;
 }
 
-// The map at `path` in `root` (a null node when the path leads elsewhere).
+// The map at `path` in `root` (a null node when the path leads elsewhere). A YAML::Node is a
+// reference: `reset` moves it to another node, where `=` would overwrite the node it refers to.
 YAML::Node node_at(YAML::Node root, const std::string& path) {
-  YAML::Node node = root;
+  YAML::Node node;
+  node.reset(root);
   for (const Step& s : parse_path(path)) {
     if (!node.IsMap()) return {};
     const YAML::Node& as_const = node;
     if (!as_const[s.key]) return {};
-    node = node[s.key];
+    node.reset(node[s.key]);
     if (s.index >= 0) {
       if (!node.IsSequence() || static_cast<std::size_t>(s.index) >= node.size()) return {};
-      node = node[static_cast<std::size_t>(s.index)];
+      node.reset(node[static_cast<std::size_t>(s.index)]);
     }
   }
   return node.IsMap() ? node : YAML::Node{};
@@ -260,8 +262,8 @@ TEST_F(DocsConfig, EveryTableListsTheKeysTheParserAllows) {
       const auto keys = allowed_keys_in(status.message, path);
       if (keys.empty()) {
         ADD_FAILURE() << table.where << ": `zz_unknown` at " << path << " of the config at "
-                      << base->where << " did not give `unknown key (allowed: ...)` but: "
-                      << status.message;
+                      << base->where
+                      << " did not give `unknown key (allowed: ...)` but: " << status.message;
       }
       allowed.insert(keys.begin(), keys.end());
     }
