@@ -36,8 +36,13 @@ def documented(architecture):
 
 
 def tracked(root):
-    files = subprocess.run(["git", "-C", str(root), "ls-files"], check=True,
-                           capture_output=True, text=True).stdout.splitlines()
+    try:
+        files = subprocess.run(["git", "-C", str(root), "ls-files"], check=True,
+                               capture_output=True, text=True).stdout.splitlines()
+    except (OSError, subprocess.CalledProcessError):
+        # Not a git checkout (an unpacked archive): every file but build and output folders.
+        files = [str(p.relative_to(root)) for p in root.rglob("*") if p.is_file()
+                 and not p.relative_to(root).parts[0].startswith(("build", "out"))]
     top, sub = set(), {name: set() for name in CHECKED_SUBFOLDERS}
     for f in files:
         parts = f.split("/")
