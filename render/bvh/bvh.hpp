@@ -1,7 +1,19 @@
 // The implicit 4D min/max BVH of Wald et al. 2007, §5: every node bounds x, y, z and the scalar
 // range of the tets below it, so a subtree whose range misses every isovalue is culled before any
-// geometric test. Children of an inner node are stored next to each other; a leaf holds a
-// contiguous range of TetVolume::tets (the build reorders the tets into leaf order).
+// geometric test, for all isovalues at once. Children of an inner node are stored next to each
+// other; a leaf holds a contiguous range of TetVolume::tets (the build reorders the tets into leaf
+// order and renumbers the vertices in the order the leaves first use them, the reordering for
+// locality of Aman et al. 2022, §5, along the BVH's own order). Two builders: a BIH-style spatial
+// median (the default) and a binned SAH; the top levels are split breadth-first in parallel down
+// to about 64 subtrees, then built in parallel; the tree depends only on the data, never on the
+// thread count. A node is 40 bytes; with leaves of up to 64 tets (the default) the BVH, its leaf
+// vertex lists and the tet ids take about 8.5 bytes per tet (16 with leaves of 16). Large leaves
+// cost the tiled frame nothing measurable while a new step's refit, whose cost follows the nodes,
+// takes about half as long; a capped frame, which locates a point per cap pixel one tet at a time,
+// is 1.24x slower with them, so a field with a clip cap gets leaves of 16 by default. A new step
+// refits the recorded subtrees in parallel, each depth first (leaves, their vertex lists and the
+// vertices read front to back), then the nodes above them; the refit's SAH cost against the
+// build's decides a rebuild (render/update/volume_update.hpp).
 #pragma once
 
 #include <cstdint>

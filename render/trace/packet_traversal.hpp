@@ -16,6 +16,25 @@
 // eye and compiles to nothing. A level-of-detail policy (level_of_detail.hpp) may stop the
 // descent at an inner node, which then goes to the leaf operation as it is; the default one
 // never stops and compiles to nothing.
+//
+// The clip region's node test keeps a margin of 1e-5 of the coordinate magnitude, so only the hit
+// test decides and the image does not depend on the BVH. Shadow rays (shadow_rays.cpp) are packets
+// too: rays towards a point light start at the light and end short of the hit points, so they share
+// an origin; the traversal's interval test bounds them and, with no corner rays, the tet and
+// isopolygon frustum tests get four planes around the rays' mean direction that bound every ray's
+// slopes (packet_frustum.hpp, make_direction_frustum; the row restriction of primary rays is off).
+// A leaf operation that returns true ends the walk, which the any-hit leaf does once every ray is
+// occluded. Rays towards a directional light share no origin and go one by one.
+//
+// Transparency (Wald et al. 2007, §8.5) is one more hit filter, not a copy of the walk: the rays of
+// a packet whose hit is transparent are traced again from the same origin and frustum with an
+// after-layer filter (layer_filter.hpp) that keeps only hits strictly after the previous layer's
+// (distance, key) in the tie order, so a hit at a shared edge is peeled exactly once; peeling stops
+// at an opaque layer or max_layers. Each layer is shaded as a first hit and becomes a zero-length
+// fragment at its ray distance (render/core/fragments.hpp), so the nearest layers of each rank
+// contain the nearest of all ranks together. The layers go into max_layers slots per pixel, packed
+// into the fragment image after the frame; the slots belong to the LayerImage and are kept from
+// frame to frame (allocating and clearing them per frame cost more than tracing the layers).
 #pragma once
 
 #include <cstdint>

@@ -4,13 +4,35 @@
 // barycentrically at the hit gives a normal that varies continuously across shared faces.
 //
 // The sums are exact, so a vertex's gradient does not depend on the order of its tets nor on how
-// they are split among ranks (docs/architecture.md, "Smooth shading across ranks"): each tet's
-// terms (gradient x |det| per component, and |det|) are rounded to a grid set by the largest
-// term of the vertex in that component (a maximum, which any order and any partition find
-// alike) and by its tet count (a sum, likewise), coarse enough that every partial sum is a
-// multiple of the grid below 2^53 of its units: double additions of them never round. A rank
-// that shares vertices with others combines their exponents (a maximum) and tet counts (a sum)
-// and then their sums (exact additions) between the passes.
+// they are split among ranks (smooth shading across ranks, docs/architecture.md §2). Per vertex
+// and term (gradient x |det| per component, and |det|):
+// - pass 1 finds the largest term's binary exponent e (a maximum: any order and partition agree)
+//   and counts the vertex's tets n (a sum, likewise);
+// - pass 2 scales each term by 2^-e and rounds it to a multiple of 2^(b - 53),
+//   b = max(3, ceil(log2 n)), by adding and subtracting 1.5 2^(b-1). A term is then at most
+//   2^(53 - b) units and n of them at most 2^53: every partial sum is a double, so plain double
+//   additions never round and any order gives the same bits.
+// The price is precision: a term's rounding error is 2^(b - 54) of 2^e (2^-49 for up to 32 tets,
+// 2^-42 below 4096, well below the float gradients' 2^-24); a vertex of many more tets only gets a
+// coarser grid. Since no order matters, each pass runs in parallel over chunks of tets, each chunk
+// owning a range of vertices (numbered in the tets' first-use order, render/volume/tet_volume.hpp)
+// and handing the few terms of other chunks' vertices on to a serial tail; the per-vertex arrays
+// are on huge pages and the waiting pairs are counted first into one array (fresh 4 KiB pages per
+// update were most of the time at 14M tets).
+//
+// On one rank update_volume runs both passes. On several ranks, when any rank's smooth volume
+// changed (one allreduce of flags, which also says whether some rank's update failed, so that
+// none waits in the exchange), the multi-rank stage runs pass 1, takes the maximum of the
+// exponents and the sum of the tet counts of the shared vertices over the ranks, runs pass 2 and
+// adds the shared sums over the ranks. The shared vertices are found once per topology (or keep
+// mask) change on any rank: each rank's candidates are the vertices of its domain's boundary faces
+// (render/walk/face_adjacency.hpp), keyed by their exact reference coordinates (point numbers are
+// per rank), and sent to a home rank chosen by a hash of the key; the home keeps the keys that
+// several ranks hold and tells each rank which of its candidates those are. Each exchange then
+// sends every rank's shared vertices' values to their homes, which combine them and send the
+// result back: two all-to-all calls per exchange (three exchanges), O(shared vertices) bytes per
+// rank. The gradients are then bit for bit those of one rank holding every tet
+// (tests/adaptor/smooth_mpi_test.cpp, 1 to 4 ranks).
 #pragma once
 
 #include <array>

@@ -1,7 +1,14 @@
-// The faces where rays enter a rank's domain, in a small binary BVH of their own: a ray starts
-// its walk at the nearest boundary face it enters through, and after leaving the domain looks
-// for the next one (non-convex domains and sub-domains). The tree is built once per adjacency
-// (the faces depend on topology only) and refit when the geometry moves.
+// The faces where rays enter a rank's domain, in a small binary BVH of their own (median splits,
+// 4 faces a leaf): a ray starts its walk at the nearest boundary face it enters through at
+// t >= t_from, and after leaving the domain looks for the next one (non-convex domains and
+// sub-domains). Entries are ordered by (t, face index) and each must come after the previous one,
+// so re-entering a non-convex domain can never cycle. The tree is built once per adjacency (the
+// faces depend on topology only) and refit when the geometry moves. A camera inside the mesh: the
+// eye's tet is located once per frame through the volume's BVH (point_locate.hpp, locate_eye) and
+// each ray's walk starts there from the face its line enters the tet through behind the eye
+// (entry_behind, the same ray_side test as a boundary entry, so exactly one face), its first
+// stretch cut at t = 0; Tet20 only (Tet16 decodes a neighbour from the one the walk came from,
+// unknown behind the eye).
 #pragma once
 
 #include <cstddef>

@@ -3,12 +3,17 @@
 // entered through recovers the fourth with three xors. Neighbours are indexed by the order of
 // the vertex they lie across among the tet's four vertex indices sorted ascending (the
 // paper's convention, which needs no per-tet vertex list):
-// - Tet20 keeps the four neighbours;
-// - Tet16 keeps N_k xor N_3 for k < 3, so a walk that knows the neighbour it came from recovers
-//   any other with two xors.
-// A face without a neighbour on this rank holds kBoundaryFace. The adjacency depends on the
-// topology and on the order of volume.tets only: a refit leaves it valid, a BVH rebuild (which
-// reorders the tets) or a new topology needs a new one (docs/architecture.md §8).
+// - Tet20 keeps the four neighbours (20 bytes a tet);
+// - Tet16 keeps N_k xor N_3 for k < 3 (16 bytes), so a walk that knows the neighbour it came
+//   from recovers any other with two xors.
+// A face without a neighbour on this rank holds kBoundaryFace; a face of three or more tets and a
+// tet with a repeated vertex are counted and treated as boundary. Built in parallel: every face is
+// bucketed by its smallest vertex (atomic counts, a prefix sum, an atomic scatter), each bucket
+// sorted whole and matched, so the result does not depend on the thread count. The adjacency
+// depends on the topology and on the order of volume.tets only: a refit leaves it valid, a BVH
+// rebuild (which reorders the tets) or a new topology needs a new one (docs/architecture.md §8).
+// The tets stay in the BVH's leaf order, which already gives the locality of Aman et al.'s §5:
+// their Hilbert order (hilbert_order.hpp) walked slower on the same rays.
 #pragma once
 
 #include <cstddef>

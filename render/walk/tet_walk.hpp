@@ -2,11 +2,22 @@
 // boundary face, then in each tet recover the vertex opposite the entry face with three xors,
 // project it, pick the exit face from the side of the ray relative to the three edges from that
 // vertex (Algorithm 1), and step to the neighbour across it (Algorithms 5 and 7). Where the ray
-// leaves the domain it looks for the next boundary face it enters through. docs/architecture.md
-// §8 describes the guarantees: the sides are exact functions of edges (ray_frame.hpp), so the
-// walk never loses or revisits a tet in exact arithmetic, and a step bound ends any ray that
-// rounding would make loop. Every decision must be computed with the same floating-point
-// operations wherever it is made, so this header is included only by render/ sources (built
+// leaves the domain it looks for the next boundary face it enters through.
+//
+// The ray is projected on a 2D basis orthogonal to it (Duff et al. 2017), each vertex once per tet
+// it enters. The side of the ray relative to an edge (ray_frame.hpp, ray_side) is a function of the
+// directed edge alone, exactly antisymmetric, and never zero: exact ties are decided as if the ray
+// moved by (e, e^2) (simulation of simplicity, Edelsbrunner and Mücke 1990), and by vertex indices
+// when both ends project to one point. So every tet around an edge or vertex sees the same side,
+// and a ray through a vertex or an edge crosses one face at a time, never two or none: the walk
+// never loses or revisits a tet in exact arithmetic. A step bound (tets + 64) ends any ray that
+// rounding could still make loop; such rays are counted (lost_rays). Where a ray crosses a face,
+// its point and field value come from the ray's barycentric weights in the projected face, so the
+// field is continuous from tet to tet; a second point field is interpolated with the same weights.
+//
+// Every decision must be computed with the same floating-point operations wherever it is made (a
+// fused multiply-add in one caller and not in another once made the walk and the entry search
+// disagree on a ray through a vertex), so this header is included only by render/ sources (built
 // with -ffp-contract=off); other code calls walk_segments.
 #pragma once
 
