@@ -2,8 +2,8 @@
 // mistake refused with the file, line and key.
 #include <gtest/gtest.h>
 
-#include "config_output.hpp"
-#include "config_parse.hpp"
+#include "adaptor/config/config_output.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

@@ -11,7 +11,7 @@
 #include <csignal>
 #include <fstream>
 
-#include "line_file.hpp"
+#include "adaptor/output/line_file.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace tetray {

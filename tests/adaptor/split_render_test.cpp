@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cell_split.hpp"
+#include "adaptor/input/cell_split.hpp"
 #include "render/core/hash.hpp"
 #include "support/cell_meshes.hpp"
 #include "support/reference_comparison.hpp"

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "tie_keys.hpp"
+#include "adaptor/input/tie_keys.hpp"
 #include "tools/scenes/box_mesh.hpp"
 
 namespace tetray {
