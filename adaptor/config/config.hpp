@@ -72,8 +72,8 @@ struct Keyframe {
   render::Camera camera{};
 };
 
-// Direct volume rendering of the scene's field (adaptor/config_volume.cpp, docs/architecture.md
-// §8): a colormap over a value range and opacity points, per unit distance.
+// Direct volume rendering of the scene's field (adaptor/config/config_volume.cpp,
+// docs/architecture.md §8): a colormap over a value range and opacity points, per unit distance.
 struct VolumeSpec {
   std::string colormap_name = "viridis";
   ColorRange range{};                         // automatic: the field's global range each step
@@ -122,7 +122,7 @@ struct Output {
 };
 
 // Points where fields are sampled at every rendered step, independent of the scenes: the
-// points given and the lines' samples, in the order of the config (adaptor/probes.hpp).
+// points given and the lines' samples, in the order of the config (adaptor/step/probes.hpp).
 struct ProbeSet {
   std::string name;                 // names the CSV file
   std::vector<std::string> fields;  // sampled at each point
@@ -134,7 +134,8 @@ struct Config {
   Output output{};
   std::vector<Scene> scenes;
   render::UpdatePolicy bvh{};
-  bool bvh_leaf_size_given = false;  // else each volume's leaves follow its scenes (adaptor_impl)
+  bool bvh_leaf_size_given =
+      false;  // else each volume's leaves follow its scenes (step/update.cpp)
   render::NonFinitePolicy nonfinite = render::NonFinitePolicy::error;
   int threads = 0;  // the renderer's threads on each rank; 0: default_thread_count()
   std::vector<ProbeSet> probes;

@@ -5,9 +5,9 @@
 //
 // The writer's parallel work (the EXR and PNG of an image at once, their row loops) runs in its
 // own arena of `output.writer_threads` threads, sized from the rank's budget (writer_thread_share
-// in thread_budget.hpp), at low priority: oneTBB's workers go to the renderer's arena first
-// whenever a render step overlaps encoding. Its own arena, not the renderer's, so that a render
-// step never picks up an encoding task while it waits for its own loops. With `mp4`, each
+// in adaptor/step/thread_budget.hpp), at low priority: oneTBB's workers go to the renderer's arena
+// first whenever a render step overlaps encoding. Its own arena, not the renderer's, so that a
+// render step never picks up an encoding task while it waits for its own loops. With `mp4`, each
 // scene's images are also appended to its movie, which finish() closes.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The viewer of the output directory (adaptor/viewer/index.html): `<dir>/index.html`, which
+// The viewer of the output directory (adaptor/output/viewer/index.html): `<dir>/index.html`, which
 // browses every scene's Cinema table, and beside each table `<scene>.cdb/data.js`, the table's
 // text wrapped in a script call. A page opened from file:// may load scripts and images but not
 // read other files, so the table reaches it as a script. Both are written atomically; data.js is
@@ -10,7 +10,7 @@
 
 namespace tetray {
 
-extern const char* const kViewerPage;  // generated from adaptor/viewer/index.html
+extern const char* const kViewerPage;  // generated from adaptor/output/viewer/index.html
 
 std::string viewer_page_path(const std::string& directory);
 std::string cinema_script_path(const std::string& directory, const std::string& scene);

@@ -26,7 +26,7 @@ struct ChangeEpochs {
 
 struct VolumeInputs {
   std::span<const std::int64_t> tets;
-  std::span<const std::uint32_t> tie_keys;  // one per tet (tie_keys.hpp)
+  std::span<const std::uint32_t> tie_keys;  // one per tet (adaptor/input/tie_keys.hpp)
   render::PointSource points;
   render::FieldSource field;
 };

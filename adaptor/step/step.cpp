@@ -115,8 +115,8 @@ Status Adaptor::Impl::update_step(const MeshView& mesh, std::span<const FieldVie
   return status;
 }
 
-// Every due scene's views on this rank (trace_scenes.cpp, volume_scenes.cpp), and the per-rank
-// images before compositing leaves only the writer rank's image defined.
+// Every due scene's views on this rank (trace_scenes.cpp, render_volume_scenes.cpp), and the
+// per-rank images before compositing leaves only the writer rank's image defined.
 Status Adaptor::Impl::render_scenes(std::span<const FieldView> fields) {
   Status status = guarded("trace", [&] { return trace_scenes(fields); });
   if (status.ok() && config_.output.per_rank_images) {

@@ -6,7 +6,7 @@
 //   validate.cpp          the solver's arrays checked and converted (connectivity, tie keys)
 //   update.cpp            the volumes and BVHs brought to the step, shared gradients, ranges
 //   trace_scenes.cpp      the surfaces of each view traced on this rank
-//   volume_scenes.cpp     the volume scenes rendered on this rank
+//   render_volume_scenes.cpp  the volume scenes rendered on this rank
 //   scene_cameras.cpp     each view's camera
 //   composite.cpp         each view composited onto the writer rank, with its shadows
 //   output_hand_off.cpp   the writer rank's images and log rows to the writer thread
@@ -98,7 +98,7 @@ class Adaptor::Impl {
   bool smooth_volume(std::size_t v) const;
   Status global_inputs(std::span<const FieldView> fields);
 
-  // trace_scenes.cpp and volume_scenes.cpp
+  // trace_scenes.cpp and render_volume_scenes.cpp
   Status trace_scenes(std::span<const FieldView> fields);
   void trace_surface_scene(SceneState& s, std::size_t k, std::span<const FieldView> fields);
   void trace_surface_view(SceneState& s, std::size_t k, std::size_t v,

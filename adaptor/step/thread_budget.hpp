@@ -24,7 +24,7 @@ int default_thread_count();
 
 // The writer's threads (output.writer_threads unset) out of a rank's `budget`: half of it, at
 // least 1. The writer encodes while the solver computes its next steps, and its arena yields
-// oneTBB's workers to the renderer during a render step (adaptor/image_writer.hpp).
+// oneTBB's workers to the renderer during a render step (adaptor/output/image_writer.hpp).
 int writer_thread_share(int budget);
 
 }  // namespace tetray

@@ -1,6 +1,6 @@
 // The third stage of a render step, on each rank alone: every view of every due scene traced
 // against this rank's tets, each from the step's one BVH (only the camera changes). A surface
-// scene is traced here, a volume scene rendered in volume_scenes.cpp.
+// scene is traced here, a volume scene rendered in render_volume_scenes.cpp.
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/step/color_field.hpp"
 #include "adaptor/step/step_runner.hpp"

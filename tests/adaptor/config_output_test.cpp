@@ -1,5 +1,5 @@
-// The encoding keys of the output map (config_output.cpp): defaults, every value read, and each
-// mistake refused with the file, line and key.
+// The encoding keys of the output map (adaptor/config/config_output.cpp): defaults, every value
+// read, and each mistake refused with the file, line and key.
 #include <gtest/gtest.h>
 
 #include "adaptor/config/config_output.hpp"
