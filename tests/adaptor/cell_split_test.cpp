@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "cell_split.hpp"
+#include "adaptor/input/cell_split.hpp"
 #include "support/cell_meshes.hpp"
 
 namespace tetray {

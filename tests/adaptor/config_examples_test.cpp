@@ -1,7 +1,7 @@
 // The example configs shipped for users parse without error.
 #include <gtest/gtest.h>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

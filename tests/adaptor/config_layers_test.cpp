@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

@@ -1,9 +1,9 @@
-// The encoding keys of the output map (config_output.cpp): defaults, every value read, and each
-// mistake refused with the file, line and key.
+// The encoding keys of the output map (adaptor/config/config_output.cpp): defaults, every value
+// read, and each mistake refused with the file, line and key.
 #include <gtest/gtest.h>
 
-#include "config_output.hpp"
-#include "config_parse.hpp"
+#include "adaptor/config/config_output.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

@@ -1,7 +1,7 @@
 // The probes key: points and lines expand into one list in config order; mistakes name the key.
 #include <gtest/gtest.h>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

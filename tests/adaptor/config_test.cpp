@@ -5,8 +5,8 @@
 #include <cmath>
 #include <ostream>
 
-#include "config_parse.hpp"
-#include "trigger.hpp"
+#include "adaptor/config/config_parse.hpp"
+#include "adaptor/step/trigger.hpp"
 
 namespace tetray::config {
 namespace {

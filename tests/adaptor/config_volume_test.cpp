@@ -2,7 +2,7 @@
 // along the walk; mistakes name the key.
 #include <gtest/gtest.h>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 namespace tetray::config {
 namespace {

@@ -1,5 +1,5 @@
-// Whole lines (adaptor/line_file.hpp) at the moment a write fails: a file size limit that falls
-// inside a line makes the kernel write part of it and return short; the append must take that
+// Whole lines (adaptor/output/line_file.hpp) at the moment a write fails: a file size limit that
+// falls inside a line makes the kernel write part of it and return short; the append must take that
 // part back, and must not write the line in pieces, since a second write() past the limit ends
 // the process with SIGXFSZ as a kill would, leaving the first piece behind. Also: a reader drops
 // a last line without its newline.
@@ -11,7 +11,7 @@
 #include <csignal>
 #include <fstream>
 
-#include "line_file.hpp"
+#include "adaptor/output/line_file.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace tetray {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 #include "plane_scene.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"

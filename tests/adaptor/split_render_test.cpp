@@ -1,15 +1,15 @@
-// The renderer on the tets the adaptor splits other cells into (cell_split.hpp): on meshes of
-// hexahedra, wedges, pyramids, hexahedra mixed with pyramids, quadratic tets and quadratic
-// hexahedra, a sphere level set is watertight from random cameras (docs/architecture.md §5: zero
-// pinholes with every packet size) and tetray's image agrees with the double-precision reference
-// intersector on the standard cameras. The split's points are ordered by their positions' hash,
-// as the adaptor orders them.
+// The renderer on the tets the adaptor splits other cells into (adaptor/input/cell_split.hpp): on
+// meshes of hexahedra, wedges, pyramids, hexahedra mixed with pyramids, quadratic tets and
+// quadratic hexahedra, a sphere level set is watertight from random cameras (docs/architecture.md
+// §5: zero pinholes with every packet size) and tetray's image agrees with the double-precision
+// reference intersector on the standard cameras. The split's points are ordered by their positions'
+// hash, as the adaptor orders them.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "cell_split.hpp"
+#include "adaptor/input/cell_split.hpp"
 #include "render/core/hash.hpp"
 #include "support/cell_meshes.hpp"
 #include "support/reference_comparison.hpp"

@@ -10,9 +10,9 @@
 #include <optional>
 #include <string>
 
+#include "adaptor/step/thread_budget.hpp"
 #include "plane_scene.hpp"
 #include "support/scratch_dir.hpp"
-#include "thread_budget.hpp"
 
 namespace tetray {
 namespace {

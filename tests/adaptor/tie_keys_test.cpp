@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "adaptor/input/tie_keys.hpp"
 #include "scenes/box_mesh.hpp"
-#include "tie_keys.hpp"
 
 namespace tetray {
 namespace {

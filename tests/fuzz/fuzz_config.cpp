@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "config_parse.hpp"
+#include "adaptor/config/config_parse.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view yaml(reinterpret_cast<const char*>(data), size);

@@ -1,0 +1,116 @@
+// The fourth stage of a render step, collective: the log counters summed onto the writer rank,
+// then every view of every due scene composited onto it (depth, fragments or transparent
+// layers), with its shadows across ranks, and handed to the writer (output_hand_off.cpp).
+#include <sys/resource.h>
+
+#include "adaptor/scene_layers.hpp"
+#include "adaptor/scene_shadows.hpp"
+#include "adaptor/step/step_runner.hpp"
+#include "render/composite/composite.hpp"
+#include "render/composite/fragment_composite.hpp"
+#include "render/core/stopwatch.hpp"
+
+namespace tetray {
+namespace {
+
+std::uint64_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+}  // namespace
+
+Status Adaptor::Impl::composite_and_submit() {
+  // Per scene the counters summed over the ranks; the largest peak RSS.
+  std::vector<SceneCounters> sums(scenes_.size());
+  std::uint64_t rss = peak_rss_bytes();
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    const FieldVolume& volume = volumes_[scenes_[k].volume];
+    if (!scenes_[k].due) continue;
+    sums[k] = {local_tets_, volume.volume().tets.size(), skipped_[scenes_[k].volume],
+               volume.volume().bytes() + volume.bvh().bytes()};
+  }
+  const int writer = config_.output.writer_rank;
+  const int reduced = reduce_sum_to_root(comm_, writer, sums);
+  if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
+    return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
+  }
+  Status local_failure = Status::success();
+  for (std::size_t k = 0; k < scenes_.size(); ++k) {
+    SceneState& s = scenes_[k];
+    if (!s.due) continue;
+    for (std::size_t v = 0; v < s.views.size(); ++v) {
+      Status st = composite_and_submit_view(s, k, v, sums[k], rss, local_failure);
+      if (!st.ok()) return st;
+    }
+  }
+  return local_failure;
+}
+
+// One view of a scene: composited onto the writer rank (with its shadows), which queues it with
+// its own log row: this view's trace and composite times, and (first view only, as shared work
+// goes to the first due scene) the stages the views share, run once for all of them.
+Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t k, std::size_t v,
+                                                const SceneCounters& sums, std::uint64_t rss,
+                                                Status& local_failure) {
+  StepRecord r = s.record;
+  r.trace_ms = s.trace_ms[v];
+  if (v > 0) {
+    r.check_ms = r.ingest_ms = r.bvh_ms = r.color_ms = 0;
+    r.bvh_update = "none";
+  }
+  if (Status st = composite_view(s, k, v, r, local_failure); !st.ok()) return st;
+  if (is_writer()) submit_view(s, v, std::move(r), sums, rss);
+  return Status::success();
+}
+
+// Collective. An MPI error is returned; a failure of this rank alone in the shadows goes to
+// `local_failure`, since the other scenes' collectives still need this rank.
+Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
+                                     Status& local_failure) {
+  render::Framebuffer& image = s.images[v];
+  const int writer = config_.output.writer_rank;
+  if (!s.layers.empty()) return composite_layered_view(s, k, v, r, local_failure);
+  if (comm_.size > 1) {
+    const render::Stopwatch watch;
+    const int rc = s.config.volume
+                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
+                       : render::composite(image, comm_.comm, {.root = writer});
+    if (rc != MPI_SUCCESS) {
+      return {StatusCode::mpi_error,
+              "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
+    }
+    r.composite_ms = watch.ms();
+  }
+  if (s.config.volume || s.config.shading.lights.shadow_count() == 0) return Status::success();
+  const render::Stopwatch watch;
+  const FieldVolume& volume = volumes_[s.volume];
+  const render::Camera camera = view_camera(s, k, v);
+  const render::TraceOptions options = trace_options(s);
+  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
+  Status st = shadow_scene(image, s.shadow_terms[v], scene, comm_, writer);
+  if (st.code == StatusCode::mpi_error) return st;
+  if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
+  r.composite_ms += watch.ms();
+  return Status::success();
+}
+
+// A transparent scene's view: its layers composited onto the writer rank, with their shadows.
+Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::size_t v,
+                                             StepRecord& r, Status& local_failure) {
+  const render::Stopwatch watch;
+  const FieldVolume& volume = volumes_[s.volume];
+  const render::Camera camera = view_camera(s, k, v);
+  const render::TraceOptions options = trace_options(s);
+  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
+  Status st = composite_layers(s.layers[v], scene, comm_, config_.output.writer_rank, s.images[v]);
+  if (st.code == StatusCode::mpi_error) {
+    return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
+  }
+  if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
+  r.composite_ms = watch.ms();
+  return Status::success();
+}
+
+}  // namespace tetray
