@@ -14,12 +14,13 @@
 #include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
 #include "render/isa/isa.hpp"
+#include "render/parallel/scene_layers.hpp"
+#include "render/parallel/scene_shadows.hpp"
+#include "render/parallel/step_reductions.hpp"
 #include "render/trace/layer_shading.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/mesh_check.hpp"
 #include "render/walk/clip_cap.hpp"
-#include "scene_layers.hpp"
-#include "scene_shadows.hpp"
 #include "thread_budget.hpp"
 #include "tie_keys.hpp"
 
@@ -428,9 +429,7 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
   if (smooth.empty()) return updated;
   std::vector<std::uint8_t> changes = gradient_changes_;
   changes.push_back(updated.ok() ? 0 : 1);
-  const int rc = MPI_Allreduce(MPI_IN_PLACE, changes.data(), static_cast<int>(changes.size()),
-                               MPI_UINT8_T, MPI_BOR, comm_.comm);
-  if (rc != MPI_SUCCESS) {
+  if (const int rc = render::or_over_ranks(changes, comm_.comm); rc != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "smooth shading: agreeing on changes: " + mpi_error_text(rc)};
   }
   if (changes.back() != 0) return updated;
@@ -439,12 +438,12 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
       if (changes[v] == 0) continue;
       const render::Stopwatch watch;
       render::TetVolume& volume = volumes_[v].volume();
-      std::string error;
+      render::ProtocolStatus shared = render::ProtocolStatus::success();
       if (changes[v] & kGradientsLoaded) {
-        error = shared_gradients_[v].match(volume, mesh.points, comm_.comm);
+        shared = shared_gradients_[v].match(volume, point_source(mesh.points), comm_.comm);
       }
-      if (error.empty()) error = shared_gradients_[v].compute(volume);
-      if (!error.empty()) return {StatusCode::mpi_error, std::move(error)};
+      if (shared.ok()) shared = shared_gradients_[v].compute(volume);
+      if (!shared.ok()) return to_status(std::move(shared));
       first_due_scene(v)->record.bvh_ms += watch.ms();
     }
     return Status::success();
@@ -631,8 +630,8 @@ Status Adaptor::Impl::composite_and_submit() {
                volume.volume().bytes() + volume.bvh().bytes()};
   }
   const int writer = config_.output.writer_rank;
-  const int reduced = reduce_sum_to_root(comm_, writer, sums);
-  if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
+  const int reduced = render::sum_counters_to_root(sums, writer, comm_.comm);
+  if (reduced != MPI_SUCCESS || render::max_to_root(rss, writer, comm_.comm) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
   Status local_failure = Status::success();
@@ -687,8 +686,10 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
-  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
-  Status st = shadow_scene(image, s.shadow_terms[v], scene, comm_, writer);
+  const render::ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                                  options};
+  Status st =
+      to_status(render::shadow_across_ranks(image, s.shadow_terms[v], scene, writer, comm_.comm));
   if (st.code == StatusCode::mpi_error) return st;
   if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
   r.composite_ms += watch.ms();
@@ -702,8 +703,10 @@ Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
-  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
-  Status st = composite_layers(s.layers[v], scene, comm_, config_.output.writer_rank, s.images[v]);
+  const render::ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                                  options};
+  Status st = to_status(render::composite_layers(s.layers[v], scene, config_.output.writer_rank,
+                                                 comm_.comm, s.images[v]));
   if (st.code == StatusCode::mpi_error) {
     return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
   }

@@ -18,13 +18,13 @@
 #include "field_volume.hpp"
 #include "image_writer.hpp"
 #include "probes.hpp"
-#include "render/composite/global_reduce.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/parallel/global_reduce.hpp"
+#include "render/parallel/shared_gradients.hpp"
+#include "render/parallel/step_reductions.hpp"
+#include "render/scene/colormap.hpp"
 #include "render/trace/trace.hpp"
-#include "shared_gradients.hpp"
 #include "step_record.hpp"
-#include "step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 #include "trigger.hpp"
 #include "volume_scene.hpp"
@@ -133,8 +133,8 @@ class Adaptor::Impl {
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
-  std::vector<WalkCache> walks_;                   // per volume, built for volume scenes only
-  std::vector<SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
+  std::vector<WalkCache> walks_;  // per volume, built for volume scenes only
+  std::vector<render::SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
   // Per volume, this step's update on this rank: kGradientsUpdated or kGradientsLoaded (a new
   // topology or set of rendered tets, so new shared vertices), for smooth volumes only.
   std::vector<std::uint8_t> gradient_changes_;

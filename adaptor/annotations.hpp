@@ -8,7 +8,7 @@
 
 #include "config.hpp"
 #include "render/annotate/annotate.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 #include "step_record.hpp"
 
 namespace tetray {

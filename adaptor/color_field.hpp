@@ -3,7 +3,7 @@
 // render::load_color_field). Only scenes with color_by call these.
 #pragma once
 
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {

@@ -14,7 +14,7 @@
 
 #include "config_shading.hpp"
 #include "render/annotate/font.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"

@@ -17,7 +17,7 @@
 #include "config_shading_parse.hpp"
 #include "config_views.hpp"
 #include "config_volume.hpp"
-#include "render/trace/iso_palette.hpp"
+#include "render/scene/iso_palette.hpp"
 #include "yaml_reader.hpp"
 
 namespace tetray::config {

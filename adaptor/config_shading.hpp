@@ -6,8 +6,8 @@
 #include <string>
 
 #include "config_colormap.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/lights.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/lights.hpp"
 
 namespace tetray::config {
 

@@ -5,7 +5,7 @@
 
 #include "input_views.hpp"
 #include "line_file.hpp"
-#include "render/composite/owner_reduce.hpp"
+#include "render/parallel/owner_reduce.hpp"
 #include "render/walk/point_locate.hpp"
 #include "step_record.hpp"
 

@@ -1,7 +1,7 @@
 #include "volume_scene.hpp"
 
 #include "color_field.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray {
 

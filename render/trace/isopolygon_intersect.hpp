@@ -29,7 +29,7 @@
 #include <cmath>
 #include <limits>
 
-#include "render/trace/clip_region.hpp"
+#include "render/scene/clip_region.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/ray_packet.hpp"
 #include "render/trace/trace.hpp"

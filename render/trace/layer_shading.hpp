@@ -9,7 +9,7 @@
 
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::render {
 

@@ -23,8 +23,8 @@
 #include <type_traits>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/iso_set.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/ray_packet.hpp"

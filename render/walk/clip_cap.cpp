@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "render/trace/shade.hpp"
+#include "render/scene/shade.hpp"
 #include "render/walk/point_locate.hpp"
 
 namespace tetray::render {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "render/parallel/shared_gradients.hpp"
 #include "render/update/vertex_gradients.hpp"
 #include "render/update/volume_update.hpp"
 #include "shared_dir.hpp"
-#include "shared_gradients.hpp"
 #include "slab_partition.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
@@ -70,10 +70,12 @@ TEST(SmoothAcrossRanks, VertexGradientsAreThoseOfOneRankBitForBit) {
   if (world_size() > 1) {
     EXPECT_GT(alone, 0u) << "the slabs must share vertices";
   }
-  SharedGradients shared;
-  const PointsView points = PointsView::of(std::span<const double>(scene().mesh.points));
-  ASSERT_EQ(shared.match(slab.volume, points, MPI_COMM_WORLD), "");
-  ASSERT_EQ(shared.compute(slab.volume), "");
+  render::SharedGradients shared;
+  const std::vector<double>& p = scene().mesh.points;
+  const render::PointSource points{p.data(), render::ScalarKind::f64, nullptr,
+                                   render::ScalarKind::f64, p.size() / 3};
+  ASSERT_EQ(shared.match(slab.volume, points, MPI_COMM_WORLD).message, "");
+  ASSERT_EQ(shared.compute(slab.volume).message, "");
   EXPECT_EQ(differing_gradients(whole, slab), 0u)
       << "on rank " << rank() << " of " << world_size() << " (" << alone << " alone)";
 }

@@ -9,8 +9,8 @@
 
 #include "render/core/stopwatch.hpp"
 #include "render/image/image_write.hpp"
-#include "render/trace/camera.hpp"
-#include "render/trace/iso_palette.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/iso_palette.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"
