@@ -417,9 +417,9 @@ bool Adaptor::Impl::smooth_volume(std::size_t v) const {
 }
 
 // A rank whose tets share a vertex with another rank's sees only its own tets there, so the
-// exact partial sums are combined over the ranks (shared_gradients.hpp). Every rank takes part
-// when any rank's volume changed, and none when any rank's update failed (the agreement that
-// follows reports it).
+// exact partial sums are combined over the ranks (render/parallel/shared_gradients.hpp). Every rank
+// takes part when any rank's volume changed, and none when any rank's update failed (the agreement
+// that follows reports it).
 Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
   if (comm_.size == 1) return updated;
   std::vector<std::size_t> smooth;

@@ -66,9 +66,10 @@ class Adaptor::Impl {
     std::vector<double> trace_ms;             // per view
     std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
                                                          // compositing
-    // Per view, one term per shadowing light (scene_shadows.hpp).
+    // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
-    std::vector<render::LayerImage> layers;  // per view, a transparent scene's (scene_layers.hpp)
+    std::vector<render::LayerImage>
+        layers;  // per view, a transparent scene's (render/parallel/scene_layers.hpp)
     StepRecord record;
     // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.
     const render::Colormap* cap_colormap = nullptr;

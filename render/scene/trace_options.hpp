@@ -16,9 +16,9 @@ namespace tetray::render {
 
 // Rays traced together (Wald et al. 2007, §3): single rays, or square packets, each traversing
 // the BVH; or (tiled, the default) 128 x 128 tiles that traverse it once as a frustum and set up
-// their isopolygons a lane batch at a time for their 32 x 32 packets (tile_polygons.hpp). Every
-// choice gives bitwise the same image; larger packets share more of the traversal and of each
-// isopolygon's set-up, tiles the most.
+// their isopolygons a lane batch at a time for their 32 x 32 packets
+// (render/trace/tile_polygons.hpp). Every choice gives bitwise the same image; larger packets share
+// more of the traversal and of each isopolygon's set-up, tiles the most.
 enum class PacketSize { single, p8x8, p16x16, p32x32, tiled };
 inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
                                             PacketSize::p16x16, PacketSize::p32x32,
@@ -55,7 +55,8 @@ struct TraceOptions {
   // also written apart (trace_into's shadow_terms) for apply_shadows once visibility is known.
   Lights lights{};
   // Where a BVH node is narrower than lod.node_pixels pixels, its proxy surface is drawn instead
-  // of its tets (level_of_detail.hpp); off by default: exact images, and nothing of it runs.
+  // of its tets (render/trace/level_of_detail.hpp); off by default: exact images, and nothing of it
+  // runs.
   LevelOfDetail lod{};
   // Transparent surfaces: the layers per pixel trace_layers peels at most (1..kMaxLayers).
   int max_layers = 4;
