@@ -68,8 +68,8 @@ class Adaptor::Impl {
                                                          // compositing
     // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).
     std::vector<std::vector<render::Framebuffer>> shadow_terms;
-    std::vector<render::LayerImage>
-        layers;  // per view, a transparent scene's (render/parallel/scene_layers.hpp)
+    // Per view, a transparent scene's layers (render/parallel/scene_layers.hpp).
+    std::vector<render::LayerImage> layers;
     StepRecord record;
     // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.
     const render::Colormap* cap_colormap = nullptr;
