@@ -3,11 +3,10 @@
 // for the next one (non-convex domains and sub-domains). The tree is built once per adjacency
 // (the faces depend on topology only) and refit when the geometry moves.
 //
-// Why not render/bvh: that tree bounds tets (4D boxes with the field's range, for iso-range
-// culling), reorders TetVolume::tets into its leaf order and is built by BIH or SAH splits;
-// this one bounds triangles (3 vertices of a tet's face, no field) by a median split of their
-// centres, and is traversed in double with padded boxes for the nearest entry in (t, face)
-// order. The face index in this leaf order breaks ties between entries at equal t, so another
+// Why not render/bvh: that tree bounds tets in 4D (the field's range, for iso-range culling),
+// reorders TetVolume::tets into its leaf order and splits by BIH or SAH; this one bounds
+// triangles (faces, no field) by a median split of their centres, traversed in double with
+// padded boxes. Entries at equal t are ordered by face index in this leaf order, so another
 // builder would reorder the faces and could change which face a walk enters first.
 #pragma once
 
