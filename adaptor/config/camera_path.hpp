@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "adaptor/config/config.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray {
 

@@ -1,4 +1,4 @@
-// The adaptor's configuration after validation (docs/architecture.md §4): everything the YAML can
+// The adaptor's configuration after validation (docs/config.md): everything the YAML can
 // say, with defaults filled in. Parsing and validation live in config_parse.cpp; nothing here
 // touches YAML, so the rest of the adaptor never sees a parse error.
 #pragma once
@@ -14,7 +14,7 @@
 
 #include "adaptor/config/config_shading.hpp"
 #include "render/annotate/font.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/mesh_check.hpp"

@@ -1,4 +1,4 @@
-// The `annotations` key of a scene (docs/architecture.md §4): colorbar, caption, title, font.
+// The `annotations` key of a scene (docs/config.md): colorbar, caption, title, font.
 #pragma once
 
 #include <string>

@@ -1,7 +1,7 @@
 #include "adaptor/config/config_colormap_parse.hpp"
 
 #include "render/core/value_bounds.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray::config {
 

@@ -1,5 +1,5 @@
-// The `lod:` key of a scene (docs/architecture.md §4, §9): level of detail for its isosurfaces,
-// off (exact images) without it.
+// The `lod:` key of a scene (docs/config.md, docs/architecture.md §9): level of detail for its
+// isosurfaces, off (exact images) without it.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

@@ -1,4 +1,4 @@
-// The output keys of the encoding (docs/architecture.md §4): image compression, the writer's
+// The output keys of the encoding (docs/config.md): image compression, the writer's
 // threads and the movie.
 #pragma once
 

@@ -18,7 +18,7 @@
 #include "adaptor/config/config_views.hpp"
 #include "adaptor/config/config_volume.hpp"
 #include "adaptor/config/yaml_reader.hpp"
-#include "render/trace/iso_palette.hpp"
+#include "render/scene/iso_palette.hpp"
 
 namespace tetray::config {
 namespace {

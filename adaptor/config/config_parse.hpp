@@ -1,4 +1,4 @@
-// Reads and validates the whole adaptor config at create time (docs/architecture.md §4): unknown
+// Reads and validates the whole adaptor config at create time (docs/config.md): unknown
 // keys, wrong types and impossible values are errors that name the source, the line and the key.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The `probes:` key of the config (docs/architecture.md §4): sets of points and lines where
+// The `probes:` key of the config (docs/config.md): sets of points and lines where
 // fields are sampled at every rendered step.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The scene keys of the shading modalities (docs/architecture.md §4, Wald et al. 2007, §7), after
+// The scene keys of the shading modalities (docs/config.md, Wald et al. 2007, §7), after
 // validation: smooth or flat normals, the clip region and the lights. config_shading_parse.hpp
 // reads them from the YAML.
 #pragma once
@@ -6,8 +6,8 @@
 #include <string>
 
 #include "adaptor/config/config_colormap.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/lights.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/lights.hpp"
 
 namespace tetray::config {
 

@@ -1,4 +1,4 @@
-// The `orbit` and `camera_path` keys of a scene (docs/architecture.md §4): azimuth and
+// The `orbit` and `camera_path` keys of a scene (docs/config.md): azimuth and
 // elevation lists, or keyframed cameras over simulated time.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The `volume:` key of a scene (docs/architecture.md §4): direct volume rendering of the
+// The `volume:` key of a scene (docs/config.md): direct volume rendering of the
 // scene's field instead of isosurfaces.
 #pragma once
 

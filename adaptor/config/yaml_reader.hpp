@@ -1,5 +1,5 @@
 // Typed access to a YAML tree that turns every problem into one message naming the source
-// file, the line and the key (docs/architecture.md §4). Used only while parsing the config; the
+// file, the line and the key (docs/config.md). Used only while parsing the config; the
 // error is carried out of the parser as a value (config_parse.hpp).
 #pragma once
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 #include "render/update/volume_update.hpp"
 #include "tetray/adaptor.hpp"
 

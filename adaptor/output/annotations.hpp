@@ -9,7 +9,7 @@
 #include "adaptor/config/config.hpp"
 #include "adaptor/output/step_record.hpp"
 #include "render/annotate/annotate.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray {
 

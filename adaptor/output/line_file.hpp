@@ -1,4 +1,4 @@
-// Text files of whole lines (the Cinema table and the timing log of docs/architecture.md §3) that
+// Text files of whole lines (the Cinema table and the timing log of docs/outputs.md) that
 // a run killed at any moment leaves with every line complete: a line is appended with one write()
 // on an O_APPEND descriptor, a file is replaced whole through render/image's atomic write, and a
 // reader drops a last line without its newline. None of them follows a symbolic link or writes

@@ -1,5 +1,6 @@
-// What one scene's render at one step did: the row of tetray_log.csv (docs/architecture.md §3).
-// Stages that did not run for this scene report 0 ms, so the log shows what a scene did not need.
+// What one scene's render at one step did: the row of tetray_log.csv (docs/outputs.md, "The timing
+// log"). Stages that did not run for this scene report 0 ms, so the log shows what a scene did not
+// need.
 #pragma once
 
 #include <cstdint>

@@ -2,30 +2,9 @@
 
 #include <vector>
 
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 
 namespace tetray {
-namespace {
-
-int reduce_to_root(const Communicator& c, int root, std::span<std::uint64_t> values, MPI_Op op) {
-  if (c.size == 1 || values.empty()) return MPI_SUCCESS;
-  void* send = c.rank == root ? MPI_IN_PLACE : values.data();
-  return MPI_Reduce(send, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, op, root,
-                    c.comm);
-}
-
-}  // namespace
-
-int reduce_sum_to_root(const Communicator& c, int root, std::span<SceneCounters> counters) {
-  std::vector<std::uint64_t> packed = pack(counters);
-  const int rc = reduce_to_root(c, root, packed, MPI_SUM);
-  unpack(packed, counters);
-  return rc;
-}
-
-int reduce_max_to_root(const Communicator& c, int root, std::uint64_t& value) {
-  return reduce_to_root(c, root, std::span(&value, 1), MPI_MAX);
-}
 
 int broadcast_status(const Communicator& c, int root, Status& status) {
   if (c.size == 1) return MPI_SUCCESS;
@@ -89,12 +68,16 @@ Status agree(const Communicator& c, const Status& local, StepRanges* ranges, Sce
   return status;
 }
 
-std::string mpi_error_text(int code) {
-  char text[MPI_MAX_ERROR_STRING];
-  int length = 0;
-  if (MPI_Error_string(code, text, &length) != MPI_SUCCESS)
-    return "MPI error " + std::to_string(code);
-  return std::string(text, static_cast<std::size_t>(length));
+Status to_status(render::ProtocolStatus status) {
+  switch (status.code) {
+    case render::ProtocolStatus::Code::ok:
+      return Status::success();
+    case render::ProtocolStatus::Code::mpi_error:
+      return {StatusCode::mpi_error, std::move(status.message)};
+    case render::ProtocolStatus::Code::local_error:
+      break;
+  }
+  return {StatusCode::internal_error, std::move(status.message)};
 }
 
 }  // namespace tetray

@@ -1,5 +1,6 @@
-// The few collective operations of the adaptor besides render/composite/global_reduce and
-// render/composite. Each is a no-op on one rank.
+// The adaptor's agreement of statuses across ranks: a stage's outcome, the skipped scenes and
+// the step's ranges agreed on every rank (the protocols themselves are render/parallel's). Each
+// is a no-op on one rank.
 #pragma once
 
 #include <mpi.h>
@@ -8,21 +9,29 @@
 #include <new>
 #include <span>
 #include <string>
+#include <vector>
 
-#include "adaptor/step_reductions.hpp"
+#include "render/parallel/protocol_status.hpp"
+#include "render/parallel/step_reductions.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {
+
+// The step's reductions and MPI's error text, render/parallel's, by their names in the adaptor.
+using render::mpi_error_text;
+using render::SceneCounters;
+using render::SceneRanges;
+using render::StepRanges;
+
+// Per scene, why this rank cannot render it this step (empty: it can). Agreed with a stage's
+// outcome: a scene skipped on one rank is skipped on all, since its image would be incomplete.
+using SceneSkips = std::vector<std::string>;
 
 struct Communicator {
   MPI_Comm comm = MPI_COMM_NULL;
   int rank = 0;
   int size = 1;
 };
-
-// Element-wise sums of the scenes' counters and the maximum of `value` onto `root`, in place.
-int reduce_sum_to_root(const Communicator& c, int root, std::span<SceneCounters> counters);
-int reduce_max_to_root(const Communicator& c, int root, std::uint64_t& value);
 
 // Copies `root`'s status to every rank.
 int broadcast_status(const Communicator& c, int root, Status& status);
@@ -34,7 +43,9 @@ int broadcast_status(const Communicator& c, int root, Status& status);
 Status agree(const Communicator& c, const Status& local, StepRanges* ranges = nullptr,
              SceneSkips* skips = nullptr);
 
-std::string mpi_error_text(int code);
+// A render/parallel protocol's outcome as the adaptor's: an MPI failure stays one, a failure of
+// this rank's own work is an internal error.
+Status to_status(render::ProtocolStatus status);
 
 // Runs a stage; whatever it throws (std::bad_alloc, a library's exception) becomes a status, so
 // the rank still reaches the agreement that follows: an exception on one rank must not leave the

@@ -1,9 +1,9 @@
-// Coloring a surface by a second field (docs/architecture.md §4 color_by): the field's range on
+// Coloring a surface by a second field (docs/config.md, color_by): the field's range on
 // this rank, for an automatic colormap range (the values go to the renderer through
 // render::load_color_field). Only scenes with color_by call these.
 #pragma once
 
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 #include "tetray/adaptor.hpp"
 
 namespace tetray {

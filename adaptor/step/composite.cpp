@@ -3,12 +3,13 @@
 // layers), with its shadows across ranks, and handed to the writer (output_hand_off.cpp).
 #include <sys/resource.h>
 
-#include "adaptor/scene_layers.hpp"
-#include "adaptor/scene_shadows.hpp"
 #include "adaptor/step/step_runner.hpp"
 #include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/parallel/scene_layers.hpp"
+#include "render/parallel/scene_shadows.hpp"
+#include "render/parallel/step_reductions.hpp"
 
 namespace tetray {
 namespace {
@@ -32,8 +33,8 @@ Status Adaptor::Impl::composite_and_submit() {
                volume.volume().bytes() + volume.bvh().bytes()};
   }
   const int writer = config_.output.writer_rank;
-  const int reduced = reduce_sum_to_root(comm_, writer, sums);
-  if (reduced != MPI_SUCCESS || reduce_max_to_root(comm_, writer, rss) != MPI_SUCCESS) {
+  const int reduced = render::sum_counters_to_root(sums, writer, comm_.comm);
+  if (reduced != MPI_SUCCESS || render::max_to_root(rss, writer, comm_.comm) != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
   }
   Status local_failure = Status::success();
@@ -88,8 +89,10 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
-  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
-  Status st = shadow_scene(image, s.shadow_terms[v], scene, comm_, writer);
+  const render::ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                                  options};
+  Status st =
+      to_status(render::shadow_across_ranks(image, s.shadow_terms[v], scene, writer, comm_.comm));
   if (st.code == StatusCode::mpi_error) return st;
   if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
   r.composite_ms += watch.ms();
@@ -103,8 +106,10 @@ Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
-  const ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces, options};
-  Status st = composite_layers(s.layers[v], scene, comm_, config_.output.writer_rank, s.images[v]);
+  const render::ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces,
+                                  options};
+  Status st = to_status(render::composite_layers(s.layers[v], scene, config_.output.writer_rank,
+                                                 comm_.comm, s.images[v]));
   if (st.code == StatusCode::mpi_error) {
     return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
   }

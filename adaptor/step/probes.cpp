@@ -3,8 +3,9 @@
 #include <limits>
 
 #include "adaptor/input/input_views.hpp"
+#include "adaptor/output/line_file.hpp"
 #include "adaptor/output/probe_files.hpp"
-#include "render/composite/owner_reduce.hpp"
+#include "render/parallel/owner_reduce.hpp"
 #include "render/walk/point_locate.hpp"
 
 namespace tetray {

@@ -1,7 +1,7 @@
 // Probes (docs/architecture.md §8): at every rendered step each probe point is located in a tet
 // of this rank's volume (render/walk/point_locate.hpp), its fields interpolated barycentrically
 // from the solver's own arrays in double precision, and the answers of exactly one rank per point
-// (the lowest rank whose tets contain it, render/composite/owner_reduce.hpp) gathered on the
+// (the lowest rank whose tets contain it, render/parallel/owner_reduce.hpp) gathered on the
 // writer rank, which appends one row per point to the set's CSV file
 // (adaptor/output/probe_files.hpp).
 #pragma once

@@ -11,10 +11,10 @@
 #include "adaptor/config/config.hpp"
 #include "adaptor/output/step_record.hpp"
 #include "adaptor/step/trigger.hpp"
-#include "render/composite/global_reduce.hpp"
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/parallel/global_reduce.hpp"
+#include "render/scene/colormap.hpp"
 #include "render/trace/trace.hpp"
 
 namespace tetray {
@@ -36,9 +36,9 @@ struct SceneState {
   std::vector<double> trace_ms;                // per view
   std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
                                                        // compositing
-  // Per view, one term per shadowing light (adaptor/scene_shadows.hpp).
+  // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).
   std::vector<std::vector<render::Framebuffer>> shadow_terms;
-  // Per view, a transparent scene's (adaptor/scene_layers.hpp).
+  // Per view, a transparent scene's (render/parallel/scene_layers.hpp).
   std::vector<render::LayerImage> layers;
   StepRecord record;
   // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.

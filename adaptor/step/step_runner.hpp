@@ -21,20 +21,23 @@
 #include <string>
 #include <vector>
 
+#include "adaptor/config/camera_path.hpp"
 #include "adaptor/config/config.hpp"
 #include "adaptor/input/cell_tets.hpp"
 #include "adaptor/output/annotations.hpp"
 #include "adaptor/output/image_writer.hpp"
 #include "adaptor/output/step_record.hpp"
-#include "adaptor/shared_gradients.hpp"
 #include "adaptor/step/collective.hpp"
 #include "adaptor/step/field_volume.hpp"
 #include "adaptor/step/probes.hpp"
 #include "adaptor/step/scene_state.hpp"
 #include "adaptor/step/volume_scene.hpp"
-#include "adaptor/step_reductions.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/parallel/global_reduce.hpp"
+#include "render/parallel/shared_gradients.hpp"
+#include "render/parallel/step_reductions.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/colormap.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "tetray/adaptor.hpp"
@@ -140,8 +143,8 @@ class Adaptor::Impl {
   config::Config config_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
-  std::vector<WalkCache> walks_;                   // per volume, built for volume scenes only
-  std::vector<SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
+  std::vector<WalkCache> walks_;  // per volume, built for volume scenes only
+  std::vector<render::SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
   // Per volume, this step's update on this rank: kGradientsUpdated or kGradientsLoaded (a new
   // topology or set of rendered tets, so new shared vertices), for smooth volumes only.
   std::vector<std::uint8_t> gradient_changes_;

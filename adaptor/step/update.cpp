@@ -7,6 +7,7 @@
 #include "adaptor/step/color_field.hpp"
 #include "adaptor/step/step_runner.hpp"
 #include "render/core/stopwatch.hpp"
+#include "render/parallel/step_reductions.hpp"
 
 namespace tetray {
 namespace {
@@ -67,8 +68,8 @@ bool Adaptor::Impl::smooth_volume(std::size_t v) const {
 }
 
 // A rank whose tets share a vertex with another rank's sees only its own tets there, so the
-// exact partial sums are combined over the ranks (adaptor/shared_gradients.hpp). Every rank
-// takes part when any rank's volume changed, and none when any rank's update failed (the
+// exact partial sums are combined over the ranks (render/parallel/shared_gradients.hpp). Every
+// rank takes part when any rank's volume changed, and none when any rank's update failed (the
 // agreement that follows reports it).
 Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
   if (comm_.size == 1) return updated;
@@ -79,9 +80,7 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
   if (smooth.empty()) return updated;
   std::vector<std::uint8_t> changes = gradient_changes_;
   changes.push_back(updated.ok() ? 0 : 1);
-  const int rc = MPI_Allreduce(MPI_IN_PLACE, changes.data(), static_cast<int>(changes.size()),
-                               MPI_UINT8_T, MPI_BOR, comm_.comm);
-  if (rc != MPI_SUCCESS) {
+  if (const int rc = render::or_over_ranks(changes, comm_.comm); rc != MPI_SUCCESS) {
     return {StatusCode::mpi_error, "smooth shading: agreeing on changes: " + mpi_error_text(rc)};
   }
   if (changes.back() != 0) return updated;
@@ -90,12 +89,12 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
       if (changes[v] == 0) continue;
       const render::Stopwatch watch;
       render::TetVolume& volume = volumes_[v].volume();
-      std::string error;
+      render::ProtocolStatus shared = render::ProtocolStatus::success();
       if (changes[v] & kGradientsLoaded) {
-        error = shared_gradients_[v].match(volume, mesh.points, comm_.comm);
+        shared = shared_gradients_[v].match(volume, point_source(mesh.points), comm_.comm);
       }
-      if (error.empty()) error = shared_gradients_[v].compute(volume);
-      if (!error.empty()) return {StatusCode::mpi_error, std::move(error)};
+      if (shared.ok()) shared = shared_gradients_[v].compute(volume);
+      if (!shared.ok()) return to_status(std::move(shared));
       first_due_scene(v)->record.bvh_ms += watch.ms();
     }
     return Status::success();

@@ -1,7 +1,7 @@
 #include "adaptor/step/volume_scene.hpp"
 
 #include "adaptor/step/color_field.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray {
 

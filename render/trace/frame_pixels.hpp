@@ -9,10 +9,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "render/trace/clip_region.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/shade.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/ray_packet.hpp"
-#include "render/trace/shade.hpp"
 #include "render/trace/trace.hpp"
 
 namespace tetray::render {

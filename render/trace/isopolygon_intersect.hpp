@@ -29,7 +29,7 @@
 #include <cmath>
 #include <limits>
 
-#include "render/trace/clip_region.hpp"
+#include "render/scene/clip_region.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/ray_packet.hpp"
 #include "render/trace/trace.hpp"
@@ -255,8 +255,8 @@ inline bool set_up_polygon(const Isopolygon& poly, Vec3f eye, const PacketFrustu
   return true;
 }
 
-// A hit filter (clip_region.hpp) may discard hits by their point; the default keeps all and
-// compiles to nothing.
+// A hit filter (render/scene/clip_region.hpp) may discard hits by their point; the default keeps
+// all and compiles to nothing.
 template <int S, bool kStats, typename HitFilter = NoHitFilter>
 class IsopolygonIntersector {
  public:

@@ -3,8 +3,8 @@
 // in the tie order of docs/architecture.md §3, distance first, then the smaller tie key. A hit
 // at the previous layer's very distance (a shared edge or vertex of two tets) with a larger key
 // is the next layer, one with the same or a smaller key was already peeled: every hit is peeled
-// once, none is lost or doubled. It wraps the clip region's filter (clip_region.hpp), so a
-// layer is clipped like the first hit.
+// once, none is lost or doubled. It wraps the clip region's filter (render/scene/clip_region.hpp),
+// so a layer is clipped like the first hit.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 // The rank-local steps after depth peeling (trace.hpp, trace_layers) that turn a pixel's kept
 // layers into its color: each layer's shadows removed (its shadow terms, as apply_shadows does for
 // a first hit) and the layers blended front to back with the first layer's view depth. The
-// adaptor runs them on the writer after the fragment compositor (adaptor/scene_layers.hpp).
+// adaptor runs them on the writer after the fragment compositor (render/parallel/scene_layers.hpp).
 #pragma once
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::render {
 

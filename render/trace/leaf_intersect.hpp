@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/iso_set.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/ray_packet.hpp"

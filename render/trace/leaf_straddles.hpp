@@ -1,9 +1,10 @@
 // Which tets of each leaf straddle an isovalue, found about once per frame and shared by the tiles
-// (docs/architecture.md §7, "Tiles"). A leaf near the edge of a tile is reached by the tiles on
-// both sides, and each tested all its tets again: 1.7 visits per leaf reached at 1M tets, 1.45 at
-// 4M. The answer depends on the tets' values and the isovalues alone, so the first tile to reach a
-// leaf keeps it here and the others read it (tiles reaching it at the same moment may each find
-// it, and a full leaf whose every tet straddles is found on every visit: see kUnknown).
+// (the header of render/trace/tile_trace.hpp). A leaf near the edge of a tile is reached by the
+// tiles on both sides, and each tested all its tets again: 1.7 visits per leaf reached at 1M
+// tets, 1.45 at 4M. The answer depends on the tets' values and the isovalues alone, so the first
+// tile to reach a leaf keeps it here and the others read it (tiles reaching it at the same moment
+// may each find it, and a full leaf whose every tet straddles is found on every visit: see
+// kUnknown).
 #pragma once
 
 #include <atomic>

@@ -14,17 +14,10 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/bvh/node_planes.hpp"
+#include "render/scene/trace_options.hpp"
 #include "render/trace/isopolygon.hpp"
 
 namespace tetray::render {
-
-// What a scene asks for: empty planes or a zero pixel error mean exact images.
-struct LevelOfDetail {
-  float node_pixels = 0;                // node width allowed, in pixel footprints
-  std::span<const NodePlane> planes{};  // one per BVH node (fit_node_planes)
-
-  bool enabled() const { return node_pixels > 0 && !planes.empty(); }
-};
 
 struct NoLod {
   static constexpr bool stops_at(std::uint32_t, const BvhNode&, Vec3f) { return false; }

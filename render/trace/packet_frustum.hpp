@@ -12,7 +12,7 @@
 
 #include "render/core/simd.hpp"
 #include "render/core/vec.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::render {
 

@@ -10,8 +10,8 @@
 // Leaves get the same geometric test, then the leaf operation runs from the first active ray. A
 // tile has no rays: its geometric test is its frustum's (step III alone, exact for the four
 // planes), and every node it reaches is active from ray 0.
-// A node filter (clip_region.hpp) may discard further subtrees alongside the iso-range test,
-// and gives the distance from which each ray's box test starts (a transparent layer's rays
+// A node filter (render/scene/clip_region.hpp) may discard further subtrees alongside the iso-range
+// test, and gives the distance from which each ray's box test starts (a transparent layer's rays
 // start at the previous layer, layer_filter.hpp); the default one discards none, starts at the
 // eye and compiles to nothing. A level-of-detail policy (level_of_detail.hpp) may stop the
 // descent at an inner node, which then goes to the leaf operation as it is; the default one
@@ -42,8 +42,8 @@
 #include <type_traits>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/iso_set.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/trace/ray_packet.hpp"

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/iso_set.hpp"
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/level_of_detail.hpp"
 #include "render/volume/tet_volume.hpp"

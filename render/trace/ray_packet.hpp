@@ -10,7 +10,7 @@
 
 #include "render/core/framebuffer.hpp"
 #include "render/core/simd.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/packet_frustum.hpp"
 
 namespace tetray::render {

@@ -8,10 +8,10 @@
 #include <numeric>
 #include <type_traits>
 
+#include "render/scene/shade.hpp"
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/leaf_intersect.hpp"
 #include "render/trace/packet_traversal.hpp"
-#include "render/trace/shade.hpp"
 
 namespace tetray::render {
 namespace {

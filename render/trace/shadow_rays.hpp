@@ -7,7 +7,7 @@
 //
 // The hit points come from the image's depth alone, so every rank, given the same composited
 // depth, traces the same rays against its own tets, and "occluded" is a logical OR over the ranks
-// (render/composite/shadow_visibility.hpp): the image is the same for any rank count.
+// (render/parallel/shadow_visibility.hpp): the image is the same for any rank count.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,7 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/volume/tet_volume.hpp"
 

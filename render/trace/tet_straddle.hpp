@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "render/core/simd.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/iso_set.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {

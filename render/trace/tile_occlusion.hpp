@@ -1,5 +1,5 @@
-// Occlusion culling for a tile's traversal (docs/architecture.md §7, "Tiles"). A tile traverses
-// front to back, and its packets test the polygons binned so far from time to time
+// Occlusion culling for a tile's traversal (the header of render/trace/tile_trace.hpp). A tile
+// traverses front to back, and its packets test the polygons binned so far from time to time
 // (tile_trace.cpp). Once every ray of a block of pixels (a packet's lane batch) has a hit, the
 // block's farthest hit (RayPacket::batch_far) bounds what any later polygon can win there. A node
 // whose box lies farther from the eye than that bound in every block its projection covers

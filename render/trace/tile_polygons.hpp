@@ -1,5 +1,5 @@
-// Tiled tracing (docs/architecture.md §7, "Tiles"): a tile of the image is one frustum that
-// traverses the BVH once; the isopolygons of the straddling tets it reaches are set up a lane
+// Tiled tracing (the header of render/trace/tile_trace.hpp): a tile of the image is one frustum
+// that traverses the BVH once; the isopolygons of the straddling tets it reaches are set up a lane
 // batch at a time, one tet per lane (Wald et al. 2007, §4.1-4.3: extraction, edge planes, the
 // rows and columns the polygon projects to), and binned by the packets of the tile they cover.
 // Each lane runs the very operations of the one-polygon forms (isopolygon.hpp,

@@ -1,4 +1,4 @@
-// The tiled frame (PacketSize::tiled, the default; docs/architecture.md §7, "Tiles"): the image is
+// The tiled frame (PacketSize::tiled, the default): the image is
 // cut into tiles traced in parallel. A tile traverses the BVH once as a frustum (the one
 // traversal, packet_traversal.hpp), sets up the isopolygons of the straddling tets it reaches a
 // lane batch at a time and bins them by its packets (tile_polygons.hpp); the packets test their

@@ -13,6 +13,7 @@
 #include <numeric>
 #include <type_traits>
 
+#include "render/scene/shade.hpp"
 #include "render/trace/frame_pixels.hpp"
 #include "render/trace/isopolygon_intersect.hpp"
 #include "render/trace/layer_filter.hpp"
@@ -20,7 +21,6 @@
 #include "render/trace/leaf_intersect.hpp"
 #include "render/trace/packet_traversal.hpp"
 #include "render/trace/proxy_intersect.hpp"
-#include "render/trace/shade.hpp"
 #include "render/trace/tile_trace.hpp"
 
 namespace tetray::render {

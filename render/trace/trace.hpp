@@ -11,35 +11,13 @@
 #include "render/bvh/bvh.hpp"
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/colormap.hpp"
-#include "render/trace/iso_set.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/iso_set.hpp"
+#include "render/scene/trace_options.hpp"
 #include "render/trace/level_of_detail.hpp"
-#include "render/trace/lights.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
-
-struct Rgb {
-  float r = 1, g = 1, b = 1;
-};
-
-struct IsoSurface {
-  float value = 0;
-  Rgb color{};
-  float opacity = 1;  // below 1: transparent, drawn by trace_layers
-};
-
-// Rays traced together (Wald et al. 2007, §3): single rays, or square packets, each traversing
-// the BVH; or (tiled, the default) 128 x 128 tiles that traverse it once as a frustum and set up
-// their isopolygons a lane batch at a time for their 32 x 32 packets (tile_polygons.hpp). Every
-// choice gives bitwise the same image; larger packets share more of the traversal and of each
-// isopolygon's set-up, tiles the most.
-enum class PacketSize { single, p8x8, p16x16, p32x32, tiled };
-inline constexpr std::array kPacketSizes = {PacketSize::single, PacketSize::p8x8,
-                                            PacketSize::p16x16, PacketSize::p32x32,
-                                            PacketSize::tiled};
 
 // "1", "8x8", "16x16", "32x32", "tiled".
 const char* to_string(PacketSize packet);
@@ -57,34 +35,6 @@ struct TraceStats {
                                                  // frustum, or no row covered
 
   TraceStats& operator+=(const TraceStats& o);
-};
-
-// Coloring by a second per-vertex field (TetVolume::color_field) through a colormap instead
-// of the per-isovalue colors. Without it no field is gathered at the hits.
-struct ColorBy {
-  const Colormap* colormap = nullptr;  // null: use IsoSurface::color
-  float range_lo = 0, range_hi = 1;
-};
-
-struct TraceOptions {
-  PacketSize packet = PacketSize::tiled;
-  bool collect_stats = false;  // off: the hot path pays nothing for counting
-  ColorBy color_by{};
-  float ambient = 0.15f;  // Lambert headlight: color * (ambient + (1 - ambient) |cos|)
-  // Normals from the interpolated vertex gradients (TetVolume::gradients; flat where they are
-  // missing) instead of each isopolygon's plane.
-  bool smooth = false;
-  // Only the part of space this region keeps is drawn (Wald et al. 2007, §7); empty: all of it,
-  // at no cost.
-  ClipRegion clip{};
-  // Beyond a lone headlight, each light's term is computed per hit; a shadowing light's term is
-  // also written apart (trace_into's shadow_terms) for apply_shadows once visibility is known.
-  Lights lights{};
-  // Where a BVH node is narrower than lod.node_pixels pixels, its proxy surface is drawn instead
-  // of its tets (level_of_detail.hpp); off by default: exact images, and nothing of it runs.
-  LevelOfDetail lod{};
-  // Transparent surfaces: the layers per pixel trace_layers peels at most (1..kMaxLayers).
-  int max_layers = 4;
 };
 
 // Traces every pixel of `camera` against `volume`/`bvh` for up to kMaxIsovalues isosurfaces

@@ -9,6 +9,12 @@
 // (entry_behind, the same ray_side test as a boundary entry, so exactly one face), its first
 // stretch cut at t = 0; Tet20 only (Tet16 decodes a neighbour from the one the walk came from,
 // unknown behind the eye).
+//
+// Why not render/bvh: that tree bounds tets in 4D (the field's range, for iso-range culling),
+// reorders TetVolume::tets into its leaf order and splits by BIH or SAH; this one bounds
+// triangles (faces, no field) by a median split of their centres, traversed in double with
+// padded boxes. Entries at equal t are ordered by face index in this leaf order, so another
+// builder would reorder the faces and could change which face a walk enters first.
 #pragma once
 
 #include <cstddef>

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "render/trace/shade.hpp"
+#include "render/scene/shade.hpp"
 #include "render/walk/point_locate.hpp"
 
 namespace tetray::render {
@@ -65,7 +65,8 @@ std::optional<RegionEntry> entry_through(const RegionSides& sides, Vec3d eye, Ve
   return RegionEntry{t_in, sides.side[entered].normal};
 }
 
-// The cap hits of one image row, structure of arrays as shade.hpp's RayHits reads them.
+// The cap hits of one image row, structure of arrays as render/scene/shade.hpp's RayHits reads
+// them.
 struct CapRow {
   std::vector<float> dx, dy, dz, nx, ny, nz, t, value;
   std::vector<float> light, depth;  // sized by draw_row, once the row's hits are known

@@ -14,10 +14,10 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
-#include "render/trace/clip_region.hpp"
-#include "render/trace/colormap.hpp"
-#include "render/trace/trace.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/clip_region.hpp"
+#include "render/scene/colormap.hpp"
+#include "render/scene/trace_options.hpp"
 #include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <span>
 
-#include "render/trace/iso_set.hpp"
-#include "render/trace/trace.hpp"
+#include "render/scene/iso_set.hpp"
+#include "render/scene/iso_surface.hpp"
 #include "render/volume/tet_volume.hpp"
 #include "render/walk/segment_integral.hpp"
 

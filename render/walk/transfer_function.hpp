@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray::render {
 

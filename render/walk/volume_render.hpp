@@ -15,8 +15,8 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/fragments.hpp"
-#include "render/trace/camera.hpp"
-#include "render/trace/trace.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/iso_surface.hpp"
 #include "render/walk/boundary_faces.hpp"
 #include "render/walk/face_adjacency.hpp"
 #include "render/walk/transfer_function.hpp"

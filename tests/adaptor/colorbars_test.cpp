@@ -13,7 +13,7 @@
 #include "plane_scene.hpp"
 #include "render/annotate/annotate.hpp"
 #include "render/core/srgb.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
 #include "tetray/adaptor.hpp"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::testing {
 

@@ -1,7 +1,6 @@
 // The split-mesh tests' scene, partition, run and comparison: the gyroid with a second, linear
-// field; a rank's share of a mesh in [-1, 1]^3 as the tets whose centroid's x falls in its slab
-// (with their indices in the whole mesh as global ids), and the count of pixels two images
-// disagree on.
+// field (partitioned by support/mesh_slabs.hpp), and the count of pixels two images disagree
+// on.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +13,7 @@
 #include <string>
 
 #include "scenes/box_mesh.hpp"
+#include "support/mesh_slabs.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 
@@ -21,8 +21,6 @@ namespace tetray::testing {
 
 // The gyroid-twist scene at n = 10, t = 0.2 with `temperature` = c[0] + c[1] x + c[2] y + c[3] z
 // at its points.
-struct Slab;
-
 struct GyroidWithTemperature {
   GyroidTwist gyroid = make_gyroid_twist(10, 0.2);
   std::vector<double> temperature;
@@ -33,14 +31,6 @@ GyroidWithTemperature gyroid_with_temperature(const double (&c)[4]);
 // ids), with the point fields `f` (the gyroid's) and `temperature`.
 void render_gyroid_with_temperature(MPI_Comm comm, const std::string& yaml,
                                     const GyroidWithTemperature& scene, const Slab& part);
-
-struct Slab {
-  std::vector<std::int64_t> tets;  // 4 per tet, the whole mesh's point numbers
-  std::vector<std::int64_t> ids;   // each tet's index in the whole mesh
-};
-
-// Slab `rank` of `ranks` equal slabs of x in [-1, 1] (clamped at the ends).
-Slab x_slab(const BoxMesh& mesh, int rank, int ranks);
 
 // The adaptor of `yaml` on `comm` renders step 0 of `mesh` and `fields` and finalizes; a failed
 // call fails the test.

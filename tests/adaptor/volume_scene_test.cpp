@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "plane_scene.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "shared_dir.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"

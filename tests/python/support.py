@@ -52,7 +52,7 @@ def box_hexahedra(cells):
 
 def square_coverage(width, height, eye_z, plane_z, fov_deg, half_side=1.0, margin=1e-3):
     """For a camera at (0, 0, eye_z) looking at the origin with up +y and vertical field of view
-    fov_deg (render/trace/camera.cpp: rays through pixel centers), and the square
+    fov_deg (render/scene/camera.cpp: rays through pixel centers), and the square
     |x|, |y| <= half_side at z = plane_z: (sure, possible) boolean (height, width) masks of the
     pixels whose ray hits it farther than `margin` inside its edge, and at most `margin` outside.
     Also the x coordinate where each pixel's ray meets the plane."""

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "render/core/vec.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::test {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "render/core/vec.hpp"
-#include "render/trace/clip_region.hpp"
+#include "render/scene/clip_region.hpp"
 
 namespace tetray::test {
 

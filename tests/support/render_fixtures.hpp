@@ -9,7 +9,7 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "render/volume/tet_volume.hpp"

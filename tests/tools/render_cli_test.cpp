@@ -75,7 +75,7 @@ TEST(RenderCli, RendersAGridToPngAndExr) {
   const CommandResult exr =
       run_render(grid +
                  " --field gyroid --iso=-0.25 --eye 2.5,1.8,3.2 --look-at 0,0,0 "
-                 "--up 0,1,0 --fov 40 --size 32x32 --packet 8x8 -o " +
+                 "--up 0,1,0 --fov 40 --size 32x32 -o " +
                  dir / "out.exr");
   ASSERT_EQ(exr.exit_code, 0) << exr.output;
   EXPECT_TRUE(std::filesystem::file_size(dir / "out.exr") > 0);
@@ -108,7 +108,7 @@ TEST(RenderCli, BadOptionValuesAreErrors) {
       {base + "--iso 0 --size 0x10 -o x.png", "--size"},
       {base + "--iso 0 --size 64 -o x.png", "--size"},
       {base + "--iso 0 --eye 1,2 -o x.png", "--eye"},
-      {base + "--iso 0 --packet 4x4 -o x.png", "--packet"},
+      {base + "--iso 0 --packet 8x8 -o x.png", "--packet"},
       {base + "--iso 0 --threads 0 -o x.png", "--threads"},
       {base + "--iso 0 --fov 180 -o x.png", "--fov"},
       {base + "--iso 0 -o x.jpg", ".exr or .png"},

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 #include "render/walk/clip_cap.hpp"
 #include "tools/bench_common/bench_scene.hpp"
 #include "tools/bench_common/json_file.hpp"

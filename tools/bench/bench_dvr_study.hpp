@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 #include "tools/bench_common/image_error.hpp"
 

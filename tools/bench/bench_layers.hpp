@@ -8,7 +8,7 @@
 
 #include <json/json.h>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 #include "tools/bench_common/image_error.hpp"
 

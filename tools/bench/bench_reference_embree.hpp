@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bench_reference_vtk.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::bench {
 

@@ -7,7 +7,7 @@
 
 #include "bench_reference_embree.hpp"
 #include "bench_reference_vtk.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::bench {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "bench_results.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {

@@ -4,7 +4,7 @@
 
 #include "bench_results.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bench_dvr_study.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "scenes/box_mesh.hpp"
 
 namespace tetray::bench {

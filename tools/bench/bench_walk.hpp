@@ -7,7 +7,7 @@
 
 #include <json/json.h>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/walk/volume_render.hpp"
 #include "scenes/box_mesh.hpp"
 

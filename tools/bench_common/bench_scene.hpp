@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/bvh/bvh.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "scenes/box_mesh.hpp"

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "render/core/framebuffer.hpp"
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::bench {
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "tools/render/render_options.hpp"
 
 namespace tetray::tools {

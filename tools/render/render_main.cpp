@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "render/scene/camera.hpp"
 #include "render/trace/trace.hpp"
 #include "tetray/adaptor.hpp"
 #include "tools/render/render_camera.hpp"
@@ -98,19 +99,7 @@ bool render_file(const RenderOptions& options, std::string& error) {
   return true;
 }
 
-// The adaptor's config has no key for the ray packets, so --packet cannot reach the trace; every
-// packet size gives bitwise the same image (render/trace/trace.hpp), only the time differs.
-void note_unused_packet(const RenderOptions& options) {
-  const render::PacketSize traced = render::TraceOptions{}.packet;
-  if (options.packet == traced) return;
-  std::fprintf(stderr,
-               "tetray-render: note: --packet %s is not passed on (the adaptor's config has no "
-               "packet key): traced with %s packets, the same image\n",
-               render::to_string(options.packet), render::to_string(traced));
-}
-
 int render_and_report(const RenderOptions& options) {
-  note_unused_packet(options);
   std::string error;
   try {
     if (render_file(options, error)) return 0;

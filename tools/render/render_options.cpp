@@ -74,24 +74,9 @@ CLI::Validator image_extension() {
       "OUT.exr|OUT.png");
 }
 
-std::vector<std::string> packet_names() {
-  std::vector<std::string> names;
-  for (const render::PacketSize packet : render::kPacketSizes)
-    names.emplace_back(to_string(packet));
-  return names;
-}
-
-// One of packet_names(), checked by the parser.
-render::PacketSize packet_size(const std::string& name) {
-  for (const render::PacketSize packet : render::kPacketSizes)
-    if (name == to_string(packet)) return packet;
-  return render::TraceOptions{}.packet;
-}
-
 // Options given as text and converted once the whole command line has been checked.
 struct OptionTexts {
-  std::string eye, look_at, up, size = "1024x1024",
-                                packet = render::to_string(render::TraceOptions{}.packet);
+  std::string eye, look_at, up, size = "1024x1024";
 };
 
 void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) {
@@ -112,9 +97,6 @@ void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) 
   app.add_option("--size", texts.size, "image size")->check(size_format())->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (default: every core)")
       ->check(CLI::Range(1, 1024));
-  app.add_option("--packet", texts.packet, "ray packet: 1, 8x8, 16x16, 32x32 or tiled")
-      ->check(CLI::IsMember(packet_names()))
-      ->capture_default_str();
   app.add_option("-o,--output", options.output, "output image (.exr or .png)")
       ->required()
       ->check(image_extension());
@@ -140,7 +122,6 @@ void apply_texts(const OptionTexts& texts, RenderOptions& options) {
   if (!texts.look_at.empty()) options.look_at = parse_vec3(texts.look_at);
   if (!texts.up.empty()) options.up = parse_vec3(texts.up);
   std::tie(options.width, options.height) = *parse_size(texts.size);
-  options.packet = packet_size(texts.packet);
 }
 
 }  // namespace

@@ -20,7 +20,6 @@ struct RenderOptions {
   int width = 1024;
   int height = 1024;
   int threads = 0;  // 0: every core
-  render::PacketSize packet = render::TraceOptions{}.packet;
 };
 
 // Parses the command line into `options`. Returns the process exit code when the program should

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "render/annotate/annotate.hpp"
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray::render {
 namespace {

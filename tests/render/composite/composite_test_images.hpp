@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "render/core/framebuffer.hpp"
+#include "support/mpi_world.hpp"
 
 namespace tetray::render::testing {
 
@@ -25,18 +26,5 @@ Coverage random_coverage(std::uint32_t seed, int rank);
 // and of its wins_over. Collective;
 // meaningful on the root only.
 Framebuffer brute_force_composite(const Framebuffer& image, MPI_Comm comm, int root);
-
-// This process's place in MPI_COMM_WORLD.
-struct World {
-  int rank = 0;
-  int size = 1;
-};
-
-inline World world() {
-  World w;
-  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
-  return w;
-}
 
 }  // namespace tetray::render::testing

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <random>
 
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 #include "render/update/volume_update.hpp"
 #include "support/reference_camera.hpp"
 #include "support/render_fixtures.hpp"

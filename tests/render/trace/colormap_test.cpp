@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray::render {
 namespace {

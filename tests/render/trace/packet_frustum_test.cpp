@@ -13,7 +13,7 @@
 #include <random>
 #include <string>
 
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/packet_frustum.hpp"
 #include "render/trace/ray_packet.hpp"

@@ -5,7 +5,8 @@
 
 #include <cstddef>
 
-#include "render/trace/trace.hpp"
+#include "render/scene/iso_set.hpp"
+#include "render/scene/iso_surface.hpp"
 
 namespace tetray::render {
 

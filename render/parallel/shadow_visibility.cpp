@@ -1,4 +1,4 @@
-#include "render/composite/shadow_visibility.hpp"
+#include "render/parallel/shadow_visibility.hpp"
 
 #include <algorithm>
 #include <climits>

@@ -1,6 +1,6 @@
 // Per-vertex values of the vertices several ranks hold (a vertex on a face between two ranks'
 // tets), combined over those ranks: the exact sums of smooth shading's gradients
-// (render/update/vertex_gradients.hpp, docs/architecture.md "Smooth shading across ranks").
+// (render/update/vertex_gradients.hpp).
 // Vertices are matched by exact position, since the solver's point numbers are per rank. Each
 // vertex has a home rank (a hash of its position): the ranks send it their values, it combines
 // them and sends the result back, so a rank sends and receives only its own shared vertices'.

@@ -2,9 +2,12 @@
 // per isovalue or, with color_by, a colormap of a second field interpolated at the hit.
 #pragma once
 
-#include "render/trace/camera.hpp"
-#include "render/trace/lights.hpp"
-#include "render/trace/trace.hpp"
+#include <span>
+#include "render/scene/camera.hpp"
+#include "render/scene/lights.hpp"
+
+#include "render/scene/trace_options.hpp"
+#include "render/volume/tet_volume.hpp"
 
 namespace tetray::render {
 

@@ -1,4 +1,4 @@
-#include "render/composite/shared_vertices.hpp"
+#include "render/parallel/shared_vertices.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -1,4 +1,4 @@
-#include "render/composite/owner_reduce.hpp"
+#include "render/parallel/owner_reduce.hpp"
 
 #include <vector>
 

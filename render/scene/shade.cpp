@@ -1,10 +1,10 @@
-#include "render/trace/shade.hpp"
+#include "render/scene/shade.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 namespace tetray::render {
 namespace {

@@ -1,12 +1,23 @@
-#include "step_reductions.hpp"
+#include "render/parallel/step_reductions.hpp"
 
 #include <algorithm>
 
-namespace tetray {
+#include "render/parallel/comm_place.hpp"
+
+namespace tetray::render {
 namespace {
 
 constexpr std::size_t kRangesPerScene = 5;    // box x, y, z, color, then cap
 constexpr std::size_t kCountersPerScene = 4;  // tets, kept, skipped, bytes
+
+int reduce_to_root(std::span<std::uint64_t> values, MPI_Op op, int root, MPI_Comm comm) {
+  CommPlace place;
+  if (const int rc = place_in(comm, place); rc != MPI_SUCCESS) return rc;
+  if (place.size == 1 || values.empty()) return MPI_SUCCESS;
+  void* send = place.rank == root ? MPI_IN_PLACE : values.data();
+  return MPI_Reduce(send, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, op, root,
+                    comm);
+}
 
 }  // namespace
 
@@ -15,9 +26,8 @@ void StepRanges::clear() {
   std::fill(scenes.begin(), scenes.end(), SceneRanges{});
 }
 
-std::vector<render::ValueRange> pack(const StepRanges& ranges) {
-  std::vector<render::ValueRange> packed(std::begin(ranges.points.axis),
-                                         std::end(ranges.points.axis));
+std::vector<ValueRange> pack(const StepRanges& ranges) {
+  std::vector<ValueRange> packed(std::begin(ranges.points.axis), std::end(ranges.points.axis));
   packed.reserve(3 + kRangesPerScene * ranges.scenes.size());
   for (const SceneRanges& scene : ranges.scenes) {
     packed.insert(packed.end(), std::begin(scene.box.axis), std::end(scene.box.axis));
@@ -27,7 +37,7 @@ std::vector<render::ValueRange> pack(const StepRanges& ranges) {
   return packed;
 }
 
-void unpack(std::span<const render::ValueRange> packed, StepRanges& ranges) {
+void unpack(std::span<const ValueRange> packed, StepRanges& ranges) {
   std::copy_n(packed.begin(), 3, std::begin(ranges.points.axis));
   for (std::size_t k = 0; k < ranges.scenes.size(); ++k) {
     const auto scene = packed.subspan(3 + kRangesPerScene * k, kRangesPerScene);
@@ -53,4 +63,20 @@ void unpack(std::span<const std::uint64_t> packed, std::span<SceneCounters> coun
   }
 }
 
-}  // namespace tetray
+int sum_counters_to_root(std::span<SceneCounters> counters, int root, MPI_Comm comm) {
+  std::vector<std::uint64_t> packed = pack(counters);
+  const int rc = reduce_to_root(packed, MPI_SUM, root, comm);
+  unpack(packed, counters);
+  return rc;
+}
+
+int max_to_root(std::uint64_t& value, int root, MPI_Comm comm) {
+  return reduce_to_root(std::span(&value, 1), MPI_MAX, root, comm);
+}
+
+int or_over_ranks(std::span<std::uint8_t> flags, MPI_Comm comm) {
+  return MPI_Allreduce(MPI_IN_PLACE, flags.data(), static_cast<int>(flags.size()), MPI_UINT8_T,
+                       MPI_BOR, comm);
+}
+
+}  // namespace tetray::render

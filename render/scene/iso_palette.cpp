@@ -1,4 +1,4 @@
-#include "render/trace/iso_palette.hpp"
+#include "render/scene/iso_palette.hpp"
 
 #include "render/core/srgb.hpp"
 

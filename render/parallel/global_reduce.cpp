@@ -1,4 +1,4 @@
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 
 #include <algorithm>
 #include <vector>

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "render/composite/global_reduce.hpp"
+#include "render/parallel/global_reduce.hpp"
 
 namespace tetray::render {
 namespace {

@@ -16,14 +16,13 @@
 #include <unordered_map>
 #include <vector>
 
-#include "composite_test_images.hpp"
 #include "render/composite/composite.hpp"
-#include "render/composite/global_reduce.hpp"
-#include "render/composite/shadow_visibility.hpp"
-#include "render/trace/shadow_rays.hpp"
+#include "render/parallel/global_reduce.hpp"
+#include "render/parallel/scene_shadows.hpp"
 #include "render/trace/trace.hpp"
 #include "render/update/volume_update.hpp"
 #include "scenes/box_mesh.hpp"
+#include "support/mpi_world.hpp"
 #include "support/render_fixtures.hpp"
 
 namespace tetray::render {
@@ -172,7 +171,7 @@ TEST(SplitMesh, EmptyRootMatchesTheWholeMesh) {
 namespace tetray::render {
 namespace {
 
-// Shadows and clipping across ranks (render/composite/shadow_visibility.hpp): each rank traces
+// Shadows and clipping across ranks (render/parallel/shadow_visibility.hpp): each rank traces
 // its piece with a shadowing point and directional light inside a clip region, the image and the
 // lights' terms are composited, every rank traces the shadow rays of the composited hit points
 // against its own tets, the occlusion bits are ORed onto the root, which shades. The result must
@@ -211,12 +210,10 @@ ShadowedImage shadowed_piece(const MeshPiece& piece, Vec3d origin, MPI_Comm comm
   trace_into(out.image, volume, bvh, camera, surfaces, options, nullptr, &terms);
   EXPECT_EQ(terms.size(), 2u);
   EXPECT_EQ(composite(out.image, comm, {}), MPI_SUCCESS);
-  for (Framebuffer& term : terms) EXPECT_EQ(composite(term, comm, {}), MPI_SUCCESS);
-  std::vector<float> depth(out.image.depth.begin(), out.image.depth.end());
-  EXPECT_EQ(share_composited_depth(depth, 0, comm), MPI_SUCCESS);
-  out.occluded = trace_shadow_rays(volume, bvh, camera, surfaces, options, depth);
-  EXPECT_EQ(combine_occlusion(out.occluded, 0, comm), MPI_SUCCESS);
-  apply_shadows(out.image, terms, out.occluded);
+  const ShadowScene scene{volume, bvh, camera, surfaces, options};
+  const ProtocolStatus shadowed =
+      shadow_across_ranks(out.image, terms, scene, 0, comm, &out.occluded);
+  EXPECT_TRUE(shadowed.ok()) << shadowed.message;
   return out;
 }
 

@@ -1,7 +1,7 @@
 // The colormaps of the config's `colormap:` key. Tables are the published sRGB values; they are
 // decoded to linear once, because the framebuffer is linear and the PNG writer encodes to sRGB
 // again, so a surface colored at s shows the published color.
-#include "render/trace/colormap.hpp"
+#include "render/scene/colormap.hpp"
 
 #include <algorithm>
 #include <cmath>

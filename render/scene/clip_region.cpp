@@ -1,4 +1,4 @@
-#include "render/trace/clip_region.hpp"
+#include "render/scene/clip_region.hpp"
 
 #include <cmath>
 

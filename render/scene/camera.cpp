@@ -1,4 +1,4 @@
-#include "render/trace/camera.hpp"
+#include "render/scene/camera.hpp"
 
 #include <algorithm>
 #include <cmath>

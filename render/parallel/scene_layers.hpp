@@ -8,19 +8,20 @@
 // each occluded light's part of that layer's color before blending.
 #pragma once
 
-#include "collective.hpp"
-#include "render/core/framebuffer.hpp"
-#include "render/trace/trace.hpp"
-#include "scene_shadows.hpp"
-#include "tetray/adaptor.hpp"
+#include <mpi.h>
 
-namespace tetray {
+#include "render/core/framebuffer.hpp"
+#include "render/parallel/protocol_status.hpp"
+#include "render/parallel/scene_shadows.hpp"
+#include "render/trace/trace.hpp"
+
+namespace tetray::render {
 
 // Collective over `comm`. `local` is this rank's layers (trace_layers with scene.options). On
 // return the writer's `image` is the blended image, with the first layer's view depth and key.
 // A rank whose shadow rays failed (memory) still takes part in every collective, with no
-// occlusion, and returns its error afterwards.
-Status composite_layers(const render::LayerImage& local, const ShadowScene& scene,
-                        const Communicator& comm, int writer, render::Framebuffer& image);
+// occlusion, and returns a local error afterwards.
+ProtocolStatus composite_layers(const LayerImage& local, const ShadowScene& scene, int writer,
+                                MPI_Comm comm, Framebuffer& image);
 
-}  // namespace tetray
+}  // namespace tetray::render
