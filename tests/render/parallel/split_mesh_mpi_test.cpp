@@ -87,15 +87,20 @@ Partition random_partition(int ranks) {
   return [owners](std::size_t t) { return (*owners)[t]; };
 }
 
+// Loads a piece of the mesh (its field as the volume's), vertices relative to `origin`.
+void load_piece(const MeshPiece& piece, Vec3d origin, TetVolume& volume, Bvh& bvh) {
+  const PointSource points{piece.points.data(), ScalarKind::f64, nullptr, ScalarKind::f64,
+                           piece.field.size()};
+  const FieldSource field{piece.field.data(), ScalarKind::f64, piece.field.size()};
+  load_volume(volume, bvh, piece.tets, {}, piece.ids, points, field, {}, &origin);
+}
+
 // Traces a piece of the mesh with the global camera at isovalue 0, vertices relative to
 // `origin`.
 Framebuffer trace_piece(const MeshPiece& piece, Vec3d origin) {
   TetVolume volume;
   Bvh bvh;
-  const PointSource points{piece.points.data(), ScalarKind::f64, nullptr, ScalarKind::f64,
-                           piece.field.size()};
-  const FieldSource field{piece.field.data(), ScalarKind::f64, piece.field.size()};
-  load_volume(volume, bvh, piece.tets, {}, piece.ids, points, field, {}, &origin);
+  load_piece(piece, origin, volume, bvh);
   const IsoSurface surfaces[] = {IsoSurface{0.0f, {}}};
   return trace(volume, bvh, test::benchmark_camera(kImageSide), surfaces, {});
 }
@@ -198,10 +203,7 @@ struct ShadowedImage {
 ShadowedImage shadowed_piece(const MeshPiece& piece, Vec3d origin, MPI_Comm comm) {
   TetVolume volume;
   Bvh bvh;
-  const PointSource points{piece.points.data(), ScalarKind::f64, nullptr, ScalarKind::f64,
-                           piece.field.size()};
-  const FieldSource field{piece.field.data(), ScalarKind::f64, piece.field.size()};
-  load_volume(volume, bvh, piece.tets, {}, piece.ids, points, field, {}, &origin);
+  load_piece(piece, origin, volume, bvh);
   const IsoSurface surfaces[] = {IsoSurface{0.0f, {0.9f, 0.6f, 0.3f}}, IsoSurface{0.5f, {}}};
   const Camera camera = test::benchmark_camera(kImageSide / 2);
   const TraceOptions options = lit_and_clipped();
