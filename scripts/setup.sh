@@ -51,9 +51,10 @@ fi
 
 [ "${TETRAY_SETUP_INSTALL_ONLY:-0}" = 1 ] && exit 0
 if [ "$scope" = demo ]; then
-  # A build directory configured in full before stays so: the demo then builds only its target.
+  # A build directory configured in full before (tests on, which needs everything else on; also
+  # in a cache from before these options) stays so: the demo then builds only its target.
   options=()
-  if ! grep -qs '^TETRAY_VTK:BOOL=ON' build/CMakeCache.txt; then
+  if ! grep -qs '^TETRAY_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
     options=(-DTETRAY_VTK=OFF -DTETRAY_MOVIES=OFF -DTETRAY_BUILD_TOOLS=OFF
       -DTETRAY_BUILD_TESTS=OFF -DTETRAY_BUILD_BENCHMARKS=OFF -DTETRAY_BUILD_PYTHON=OFF)
   fi
