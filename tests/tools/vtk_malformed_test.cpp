@@ -287,5 +287,57 @@ TEST(VtkMalformed, HeaderSizesBeyondTheFileAreRefused) {
   EXPECT_TRUE(contains(xml_header_problem(dir / "plain.vtu"), "NumberOfPoints=\"5000\""));
 }
 
+// A negative count made VTK 9.1's reader size a memset with it (NumberOfCells="-1" died with
+// SIGSEGV in vtkXMLUnstructuredGridReader::SetupOutputData). Every count, and an appended data
+// offset, is refused below zero (and the offset beyond the file) before VTK reads the file.
+TEST(VtkMalformed, NegativeCountsAndOffsetsAreRefusedBeforeVtkReadsThem) {
+  ScratchDir dir;
+  const std::string good = vtu_text("0 1 2 3", "4", "10", 1);
+  struct Change {
+    std::string from, to, attribute;
+  };
+  const Change changes[] = {
+      {"NumberOfCells=\"1\"", "NumberOfCells=\"-1\"", "NumberOfCells"},
+      {"NumberOfCells=\"1\"", "NumberOfCells=\"-99999999999999999999999\"", "NumberOfCells"},
+      {"NumberOfPoints=\"4\"", "NumberOfPoints=\" -4\"", "NumberOfPoints"},
+      {"NumberOfComponents=\"3\"", "NumberOfComponents=\"-3\"", "NumberOfComponents"},
+      {"Name=\"offsets\"", "Name=\"offsets\" NumberOfTuples=\"-2\"", "NumberOfTuples"},
+      {"Name=\"offsets\"", "Name=\"offsets\" offset=\"-8\"", "offset"},
+      {"<UnstructuredGrid>", "<UnstructuredGrid NumberOfPieces=\"-1\">", "NumberOfPieces"},
+  };
+  for (const Change& change : changes) {
+    std::string text = good;
+    text.replace(text.find(change.from), change.from.size(), change.to);
+    write_text(dir / "negative.vtu", text);
+    const std::string error = read_error(dir / "negative.vtu");
+    EXPECT_TRUE(contains(error, "declares " + change.attribute + "="))
+        << change.to << ": " << error;
+    EXPECT_TRUE(contains(error, "a negative number")) << change.to << ": " << error;
+  }
+  std::string beyond = good;
+  beyond.replace(beyond.find("Name=\"offsets\""), 14, "Name=\"offsets\" offset=\"100000\"");
+  write_text(dir / "beyond.vtu", beyond);
+  EXPECT_TRUE(contains(read_error(dir / "beyond.vtu"), "offset=\"100000\", beyond the end"));
+}
+
+// The same file through a .pvtu's piece: the piece is named with the cause.
+TEST(VtkMalformed, ANegativeCountInAPieceNamesThePiece) {
+  ScratchDir dir;
+  std::string text = vtu_text("0 1 2 3", "4", "10", 1);
+  text.replace(text.find("NumberOfCells=\"1\""), 17, "NumberOfCells=\"-1\"");
+  write_text(dir / "piece.vtu", text);
+  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="0.1">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source="piece.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+  const std::string error = read_error(dir / "whole.pvtu");
+  EXPECT_TRUE(contains(error, "piece.vtu': <Piece> declares NumberOfCells=\"-1\", a negative"))
+      << error;
+}
+
 }  // namespace
 }  // namespace tetray::vtkio

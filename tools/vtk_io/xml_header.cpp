@@ -113,7 +113,8 @@ bool is_count_attribute(std::string_view name) {
 }
 
 // The integer an attribute value starts with, as VTK reads it (leading blanks skipped); a number
-// beyond 64 bits counts as the largest. Nothing when it starts with no digit: VTK reports that.
+// beyond 64 bits counts as the largest (or, negative, the smallest). Nothing when it starts with
+// no digit: VTK reports that.
 std::optional<std::int64_t> leading_integer(std::string_view text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) {
     text.remove_prefix(1);
@@ -121,23 +122,40 @@ std::optional<std::int64_t> leading_integer(std::string_view text) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   std::int64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error == std::errc::result_out_of_range) return INT64_MAX;
+  if (error == std::errc::result_out_of_range) return text.front() == '-' ? INT64_MIN : INT64_MAX;
   if (error != std::errc()) return std::nullopt;
   return value;
 }
 
-// What is wrong with one size attribute of a tag, or nothing.
+// Integer attributes that VTK reads as an offset into the file or a level: never negative.
+constexpr std::array<std::string_view, 3> kNonNegativeAttributes = {"offset", "GhostLevel",
+                                                                    "TimeStep"};
+
+// Every NumberOf... attribute is a count (points, cells, pieces, components, tuples, ...).
+bool is_count_like(std::string_view name) {
+  return name.starts_with("NumberOf") ||
+         std::find(kNonNegativeAttributes.begin(), kNonNegativeAttributes.end(), name) !=
+             kNonNegativeAttributes.end();
+}
+
+// What is wrong with one size attribute of a tag, or nothing. A negative count is refused
+// before VTK sees it: VTK 9.1's vtkXMLUnstructuredGridReader sizes a memset by
+// NumberOfCells="-5" and takes the process down.
 std::string size_problem(const Tag& tag, const std::string& name, const std::string& value,
-                         std::int64_t most_values) {
+                         std::int64_t most_values, std::int64_t file_bytes) {
   const std::optional<std::int64_t> number = leading_integer(value);
   if (!number) return {};
+  const std::string declares = "<" + tag.name + "> declares " + name + "=\"" + value + "\"";
+  if (is_count_like(name) && *number < 0) return declares + ", a negative number";
   if (name == "NumberOfComponents" && *number > kMaxComponents) {
-    return "<" + tag.name + "> declares NumberOfComponents=\"" + value + "\", more than " +
-           std::to_string(kMaxComponents);
+    return declares + ", more than " + std::to_string(kMaxComponents);
   }
   if (is_count_attribute(name) && *number > most_values) {
-    return "<" + tag.name + "> declares " + name + "=\"" + value + "\", more values than the " +
-           "file's bytes can hold (at most " + std::to_string(most_values) + ")";
+    return declares + ", more values than the file's bytes can hold (at most " +
+           std::to_string(most_values) + ")";
+  }
+  if (name == "offset" && *number > file_bytes) {
+    return declares + ", beyond the end of the file's " + std::to_string(file_bytes) + " bytes";
   }
   return {};
 }
@@ -154,7 +172,8 @@ std::string header_problem(MarkupScanner& scanner, std::int64_t file_bytes) {
       if (name == "compressor" && !value.empty()) {
         most_values = file_bytes * kMaxValuesPerCompressedByte;
       }
-      if (std::string problem = size_problem(*tag, name, value, most_values); !problem.empty()) {
+      if (std::string problem = size_problem(*tag, name, value, most_values, file_bytes);
+          !problem.empty()) {
         return problem;
       }
     }

@@ -2,8 +2,9 @@
 // reports anything: elements nested some 100000 deep (the parser frees its element tree
 // recursively, one stack frame per level, and overflows the stack), and sizes far beyond what
 // the file holds (NumberOfComponents="2000000000" makes vtkXMLReader::CreateArray loop over two
-// billion component names; NumberOfPoints="3000000000" makes it allocate tens of GB). The files
-// are scanned for both before VTK sees them.
+// billion component names; NumberOfPoints="3000000000" makes it allocate tens of GB) or below
+// zero (NumberOfCells="-1" sizes a memset in vtkXMLUnstructuredGridReader::SetupOutputData).
+// The files are scanned for both before VTK sees them.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +24,9 @@ inline constexpr std::int64_t kMaxValuesPerCompressedByte = 1 << 14;
 
 // Empty when the elements of the XML file nest at most kMaxXmlDepth deep and every size its
 // elements announce (NumberOfComponents, NumberOfPoints, NumberOfCells, NumberOfTuples, ...)
-// fits the file: uncompressed, every value takes at least one byte. Else what is wrong.
+// fits the file: none negative (nor an offset, ghost level or time step), uncompressed every
+// value takes at least one byte, and an appended data offset lies inside the file. Else what is
+// wrong.
 // The scan stops at raw appended data (binary, not XML), so a large .vtu costs only its header.
 std::string xml_header_problem(const std::string& path);
 
