@@ -1,6 +1,7 @@
 // The VTK readers on arbitrary bytes: VTK reads files, so each input is written to a file with
 // the extension TETRAY_FUZZ_EXTENSION (.vtu, .pvtu or .pvd) in a private directory that also
-// holds a valid piece, piece.vtu, for .pvtu and .pvd inputs to refer to. Every input must give a
+// holds a valid piece, piece.vtu, and one without cells, empty.vtu (a rank that had none), for
+// .pvtu and .pvd inputs to refer to. Every input must give a
 // grid (or series) or an error message; a series' entries are read as replay reads them.
 #include <unistd.h>
 
@@ -15,7 +16,7 @@
 
 namespace {
 
-// The private directory, with piece.vtu in it; removed at exit.
+// The private directory, with piece.vtu and empty.vtu in it; removed at exit.
 struct FuzzDirectory {
   std::filesystem::path path =
       std::filesystem::temp_directory_path() / ("tetray_fuzz_" + std::to_string(::getpid()));
@@ -27,6 +28,9 @@ struct FuzzDirectory {
     piece.point_fields["f"] = {0, 1, 2, 3};
     std::string error;
     if (!tetray::vtkio::write_vtu((path / "piece.vtu").string(), piece, error)) std::abort();
+    tetray::vtkio::TetGrid empty;
+    empty.point_fields["f"];
+    if (!tetray::vtkio::write_vtu((path / "empty.vtu").string(), empty, error)) std::abort();
   }
   ~FuzzDirectory() {
     std::error_code ignored;

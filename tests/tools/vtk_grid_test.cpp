@@ -1,5 +1,6 @@
-// VTK files of tet grids: write_vtu -> read_grid round trips, .pvtu pieces, the error for cells
-// that are not tets, ParaView .pvd collections, and VTK's error text kept off stderr.
+// VTK files of tet grids: write_vtu -> read_grid round trips, .pvtu pieces (empty ones too), the
+// error for cells that are not tets, ParaView .pvd collections, and VTK's error text kept off
+// stderr.
 #include <gtest/gtest.h>
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
@@ -7,9 +8,12 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "scenes/box_mesh.hpp"
 #include "support/scratch_dir.hpp"
@@ -96,6 +100,89 @@ TEST(VtkGrid, ReadsPiecesOfAParallelFile) {
     values.insert(values.end(), more.begin(), more.end());
   }
   expect_same_grid(expected, read);
+}
+
+// VTK keeps no cell offsets for a grid without cells; such a piece (a rank that had no cells)
+// adds nothing. The pieces are written as two ranks write them with VTK 9.1's own parallel
+// writer: rank 0 its grid as piece 0, rank 1 as piece 1 a grid with a point and its fields but no
+// cells (VTK writes no file for a piece without points). Without MPI each writer's summary lists
+// only its own piece, so the summary of both is the one VTK writes with a controller.
+TEST(VtkGrid, AnEmptyPieceWrittenByVtkAddsNothing) {
+  ScratchDir dir;
+  const TetGrid whole = gyroid_grid(2);
+  std::string error;
+  ASSERT_TRUE(write_vtu(dir / "whole.vtu", whole, error)) << error;
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName((dir / "whole.vtu").c_str());
+  reader->Update();
+  vtkNew<vtkUnstructuredGrid> no_cells;
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(5, 5, 5);
+  no_cells->SetPoints(points);
+  for (const char* name : {"gyroid", "height"}) {
+    vtkNew<vtkDoubleArray> values;
+    values->SetName(name);
+    values->InsertNextValue(7);
+    no_cells->GetPointData()->AddArray(values);
+  }
+  for (int rank : {0, 1}) {
+    vtkNew<vtkXMLPUnstructuredGridWriter> writer;
+    writer->SetInputData(rank == 0 ? reader->GetOutput() : no_cells.Get());
+    writer->SetFileName((dir / "pieces.pvtu").c_str());
+    writer->SetNumberOfPieces(2);
+    writer->SetStartPiece(rank);
+    writer->SetEndPiece(rank);
+    writer->SetWriteSummaryFile(rank == 0);
+    ASSERT_EQ(writer->Write(), 1) << rank;
+  }
+  TetGrid piece;
+  ASSERT_FALSE(read_grid(dir / "pieces_1.vtu", piece, error));
+  EXPECT_TRUE(contains(error, "pieces_1.vtu': the grid is empty (no cells)")) << error;
+
+  std::ifstream summary(dir / "pieces.pvtu");
+  std::string text{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+  const std::string first = "<Piece Source=\"pieces_0.vtu\"/>";
+  ASSERT_NE(text.find(first), std::string::npos) << text;
+  text.replace(text.find(first), first.size(), first + "<Piece Source=\"pieces_1.vtu\"/>");
+  write_text(dir / "both.pvtu", text);
+  TetGrid read;
+  ASSERT_TRUE(read_grid(dir / "both.pvtu", read, error)) << error;
+  EXPECT_EQ(read.tets, whole.tets);
+  std::vector<double> field = whole.point_fields.at("gyroid");
+  field.push_back(7);  // the empty piece's point, which no tet uses
+  EXPECT_EQ(read.point_fields.at("gyroid"), field);
+}
+
+TEST(VtkGrid, AFileWhoseEveryPieceIsEmptySaysSo) {
+  ScratchDir dir;
+  std::string error;
+  ASSERT_TRUE(write_vtu(dir / "empty.vtu", TetGrid{}, error)) << error;
+  write_text(dir / "empty.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source="empty.vtu"/>
+    <Piece Source="empty.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)");
+  TetGrid read;
+  EXPECT_FALSE(read_grid(dir / "empty.pvtu", read, error));
+  EXPECT_TRUE(contains(error, "empty.pvtu': every piece is empty (no cells)")) << error;
+  EXPECT_FALSE(read_grid(dir / "empty.vtu", read, error));
+  EXPECT_TRUE(contains(error, "empty.vtu': the grid is empty (no cells)")) << error;
+}
+
+// A solver's rank with no cells hands the bridge an empty grid: empty, not an error.
+TEST(VtkGrid, TheBridgeTakesAGridWithoutCells) {
+  vtkNew<vtkUnstructuredGrid> grid;
+  vtkNew<vtkPoints> points;
+  grid->SetPoints(points);
+  TetGrid out;
+  std::string error;
+  EXPECT_TRUE(from_vtk(grid, out, error)) << error;
+  EXPECT_TRUE(out.tets.empty());
+  EXPECT_TRUE(out.points.empty());
 }
 
 // Two tets and, in between, cell 1 of `type`: the unit cube as a hexahedron, or a triangle.

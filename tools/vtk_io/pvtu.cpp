@@ -85,7 +85,10 @@ std::string append_piece(const Summary& summary, TetGrid& piece, TetGrid& out) {
     std::vector<double>& values = out.point_fields[name];
     values.insert(values.end(), field->second.begin(), field->second.end());
   }
-  if (summary.ghost && piece.ghost.empty()) return "has no vtkGhostType cell array";
+  // A piece without cells has no cell arrays to flag.
+  if (summary.ghost && piece.ghost.empty() && !piece.tets.empty()) {
+    return "has no vtkGhostType cell array";
+  }
   const auto shift = static_cast<std::int64_t>(out.points.size() / 3);
   out.points.insert(out.points.end(), piece.points.begin(), piece.points.end());
   for (const std::int64_t v : piece.tets) out.tets.push_back(v + shift);

@@ -122,6 +122,12 @@ bool read_grid(const std::string& path, TetGrid& out, std::string& error) {
   error = extension == ".vtu" ? read_vtu(path, out) : read_pvtu(path, out);
   // Indices are checked here, so that a grid read from a file is whole whatever it is used for.
   if (error.empty()) error = grid_problem(out);
+  // A piece without cells is a rank that had none; a file with no cell at all has nothing to
+  // draw, which is said as such rather than rendered as an empty image.
+  if (error.empty() && out.tets.empty()) {
+    error = extension == ".pvtu" ? "every piece is empty (no cells): nothing to render"
+                                 : "the grid is empty (no cells): nothing to render";
+  }
   if (error.empty()) return true;
   out = {};
   error = "'" + path + "': " + error;

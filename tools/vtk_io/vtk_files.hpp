@@ -10,7 +10,8 @@
 
 namespace tetray::vtkio {
 
-// Reads a .vtu or .pvtu file into the arrays the VTK bridge takes.
+// Reads a .vtu or .pvtu file into the arrays the VTK bridge takes. Pieces without cells add
+// nothing; a file with no cell at all is an error that says it is empty.
 bool read_grid(const std::string& path, TetGrid& out, std::string& error);
 
 // The .vtu/.pvtu files and times listed by a ParaView .pvd collection, in time order.
