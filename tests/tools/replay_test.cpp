@@ -166,5 +166,84 @@ TEST(Replay, ASceneWhoseFieldAStepLacksIsSkippedForThatStep) {
   EXPECT_EQ(rows, expected);
 }
 
+// Every due scene skipped (the series' field is named g, the config asks for f): nothing that
+// was asked is written, so the replay fails and says which scene and why.
+TEST(Replay, AStepThatRendersNoSceneFails) {
+  ScratchDir dir;
+  write_series(dir, [](const PlaneScene& scene, int k) {
+    vtkio::TetGrid grid = moving_plane(scene, k);
+    grid.point_fields["g"] = std::move(grid.point_fields["f"]);
+    grid.point_fields.erase("f");
+    return grid;
+  });
+  const std::string command = std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "out") + " " +
+                              (dir / "series.pvd") + " 2>" + (dir / "stderr.txt");
+  EXPECT_EQ(std::system(command.c_str()) >> 8, 1) << command;
+  const std::string message = read_text(dir / "stderr.txt");
+  EXPECT_NE(message.find("step 0: no scene rendered: scene 'plane' skipped: field 'f'"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("(passed: g)"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir.path() / "out/plane/plane_000000.png"));
+}
+
+// The .pvtu of a run where one rank had no cells: its empty piece adds nothing, the other piece
+// renders as the whole step would. A .pvtu whose every piece is empty says so and fails.
+TEST(Replay, AnEmptyPieceAddsNothingAndAnAllEmptyFileSaysSo) {
+  ScratchDir dir;
+  const PlaneScene scene = make_plane_scene(4);
+  std::string error;
+  ASSERT_TRUE(vtkio::write_vtu(dir / "plane.vtu", moving_plane(scene, 0), error)) << error;
+  vtkio::TetGrid empty;
+  empty.point_fields["f"];
+  ASSERT_TRUE(vtkio::write_vtu(dir / "empty.vtu", empty, error)) << error;
+  const auto write_pvtu = [&](const std::string& name, const std::string& first) {
+    std::ofstream(dir / name) << R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">
+  <PUnstructuredGrid GhostLevel="0">
+    <PPointData><PDataArray type="Float64" Name="f"/></PPointData>
+    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
+    <Piece Source=")" << first << R"("/>
+    <Piece Source="empty.vtu"/>
+  </PUnstructuredGrid>
+</VTKFile>
+)";
+  };
+  write_pvtu("half.pvtu", "plane.vtu");
+  write_pvtu("none.pvtu", "empty.vtu");
+  const std::string half =
+      std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "half") + " " + (dir / "half.pvtu");
+  ASSERT_EQ(std::system(half.c_str()), 0) << half;
+  const auto log = read_csv(dir / "half/tetray_log.csv");
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_GE(std::stoull(cell(log, 1, "hits")), expected_plane_hits().sure);
+
+  const std::string none = std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "none") + " " +
+                           (dir / "none.pvtu") + " 2>" + (dir / "none.txt");
+  EXPECT_EQ(std::system(none.c_str()) >> 8, 1) << none;
+  const std::string message = read_text(dir / "none.txt");
+  EXPECT_NE(message.find("none.pvtu': every piece is empty (no cells)"), std::string::npos)
+      << message;
+}
+
+// A piece whose header declares a negative cell count took the replay down with SIGSEGV inside
+// VTK; now the step fails with the cause.
+TEST(Replay, ANegativeCellCountFailsTheStep) {
+  ScratchDir dir;
+  const auto files = write_series(dir);
+  std::string text = read_text(files[1]);
+  const std::size_t at = text.find("NumberOfCells=\"");
+  ASSERT_NE(at, std::string::npos);
+  text = text.substr(0, at + 15) + "-" + text.substr(at + 15);
+  std::ofstream(files[1], std::ios::binary) << text;
+  const std::string command = std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "out") + " " +
+                              (dir / "series.pvd") + " 2>" + (dir / "stderr.txt");
+  EXPECT_EQ(std::system(command.c_str()) >> 8, 1) << command;  // an exit, not a signal
+  const std::string message = read_text(dir / "stderr.txt");
+  EXPECT_NE(message.find("step1.vtu': <Piece> declares NumberOfCells=\"-"), std::string::npos)
+      << message;
+  EXPECT_TRUE(fs::exists(dir.path() / "out/plane/plane_000002.png"));
+}
+
 }  // namespace
 }  // namespace tetray::testing

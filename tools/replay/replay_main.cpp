@@ -2,7 +2,8 @@
 // through the same adaptor and config as a live run, so a config can be tuned offline. Rank 0
 // reads every step; other ranks take part with no tets. A step that cannot be read renders
 // nothing; a scene whose field a step lacks is skipped for that step. Exits non-zero if any step
-// failed. --output DIR writes where the config's output.directory would.
+// failed or rendered none of its due scenes. --output DIR writes where the config's
+// output.directory would.
 #include <mpi.h>
 #include <yaml-cpp/yaml.h>
 
@@ -55,6 +56,12 @@ bool read_step(const SeriesEntry& entry, int rank, tetray::vtkio::TetGrid& grid)
   return read == 1;
 }
 
+// A step whose every due scene was skipped (a field name no step has, say) wrote nothing that
+// was asked: the adaptor calls that partial, the replay a failure.
+bool nothing_rendered(const tetray::Status& status, const tetray::ExecuteReport& report) {
+  return status.code == tetray::StatusCode::partial && report.scenes_rendered == 0;
+}
+
 // Replays every step; a failed step is reported and the replay goes on. The adaptor's status is
 // the same on every rank, so rank 0 alone prints it.
 int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series,
@@ -74,13 +81,15 @@ int replay(tetray::Adaptor& adaptor, const std::vector<SeriesEntry>& series,
         first || grid.points != previous.points,
         first || grid.tets != previous.tets || grid.ghost != previous.ghost, true};
     const std::int64_t number = first_step + static_cast<std::int64_t>(step);
+    tetray::ExecuteReport report;
     const tetray::Status status =
-        tetray::execute(adaptor, number, series[step].time, grid, changes, nullptr);
+        tetray::execute(adaptor, number, series[step].time, grid, changes, &report);
     if (!status.ok() && rank == 0) {
-      std::fprintf(stderr, "tetray-replay: step %lld: %s\n", static_cast<long long>(number),
+      std::fprintf(stderr, "tetray-replay: step %lld: %s%s\n", static_cast<long long>(number),
+                   nothing_rendered(status, report) ? "no scene rendered: " : "",
                    status.message.c_str());
     }
-    failed += status.failed() ? 1 : 0;
+    failed += status.failed() || nothing_rendered(status, report) ? 1 : 0;
     first = false;
     previous = std::move(grid);
   }
