@@ -61,10 +61,7 @@ render::Camera keyframe_camera(const std::vector<config::Keyframe>& keyframes, d
 }
 
 bool degenerate_camera(const render::Camera& camera) {
-  const render::Vec3d forward = camera.look_at - camera.eye;
-  if (dot(forward, forward) == 0 || dot(camera.up, camera.up) == 0) return true;
-  const render::Vec3d c = cross(normalize(forward), normalize(camera.up));
-  return !(dot(c, c) > 1e-12);
+  return !render::camera_problem(camera).empty();
 }
 
 }  // namespace tetray

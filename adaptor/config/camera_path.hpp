@@ -33,8 +33,8 @@ render::Camera orbit_camera(const render::Camera& base, const View& view);
 // keyframe's time, exactly that keyframe's camera.
 render::Camera keyframe_camera(const std::vector<config::Keyframe>& keyframes, double time);
 
-// Whether the camera's frame is undefined or dominated by rounding: eye at look_at, up zero, or
-// the view direction within 1e-6 rad of up (the limit config_parse.cpp puts on a camera).
+// Whether the camera's frame is undefined or dominated by rounding (render::camera_problem, the
+// check config_parse.cpp puts on every camera).
 bool degenerate_camera(const render::Camera& camera);
 
 }  // namespace tetray

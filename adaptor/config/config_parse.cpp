@@ -34,20 +34,11 @@ render::Vec3d position(const YamlReader& r, const YAML::Node& node, std::string_
   return {v[0], v[1], v[2]};
 }
 
-// A direction (up, view_direction) as a unit vector: scaled by its largest component first,
-// so that [1e-300, 0, 0] and [1e300, 0, 0] neither underflow nor overflow.
+// A direction (up, view_direction) as a unit vector, whatever its scale.
 render::Vec3d direction(const YamlReader& r, const YAML::Node& node, std::string_view key) {
-  const render::Vec3d v = vec3(r, node, key);
-  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  if (largest == 0) r.fail(node, key, "must not be the zero vector");
-  return normalize((1 / largest) * v);
-}
-
-// Unit vectors within 1e-6 rad of each other (or of opposite directions): the camera frame
-// would be undefined or dominated by rounding.
-bool parallel(render::Vec3d a, render::Vec3d b) {
-  const render::Vec3d c = cross(a, b);
-  return dot(c, c) <= 1e-12;
+  const render::Vec3d v = render::unit_direction(vec3(r, node, key));
+  if (dot(v, v) == 0) r.fail(node, key, "must not be the zero vector");
+  return v;
 }
 
 Trigger parse_trigger(const YamlReader& r, const YAML::Node& node, std::string_view key) {
@@ -131,7 +122,8 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
   cam.auto_fit =
       node["auto_fit"] ? r.boolean(node["auto_fit"], child_key(key, "auto_fit")) : !node["eye"];
   if (node["fov_deg"])
-    cam.fov_deg = r.number_in(node["fov_deg"], child_key(key, "fov_deg"), 1, 179);
+    cam.fov_deg = r.number_in(node["fov_deg"], child_key(key, "fov_deg"), render::kMinFovDeg,
+                              render::kMaxFovDeg);
   if (node["up"]) cam.up = direction(r, node["up"], child_key(key, "up"));
   if (cam.auto_fit) {
     for (const char* k : {"eye", "look_at"}) {
@@ -141,7 +133,11 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
     if (node["view_direction"]) {
       cam.view_direction = direction(r, node["view_direction"], child_key(key, "view_direction"));
     }
-    if (parallel(cam.view_direction, cam.up)) r.fail(node, key, "view_direction is parallel to up");
+    // The fitted camera looks along view_direction: checked as a camera at that side.
+    const render::Camera fitted{cam.view_direction, {0, 0, 0}, cam.up, cam.fov_deg};
+    if (std::string problem = render::camera_problem(fitted); !problem.empty()) {
+      r.fail(node, key, problem);
+    }
     return cam;
   }
   if (node["view_direction"]) {
@@ -153,10 +149,8 @@ CameraSpec parse_camera(const YamlReader& r, const YAML::Node& node, const std::
   cam.fixed.look_at = position(r, node["look_at"], child_key(key, "look_at"));
   cam.fixed.up = cam.up;
   cam.fixed.fov_deg = cam.fov_deg;
-  const render::Vec3d forward = cam.fixed.look_at - cam.fixed.eye;
-  if (dot(forward, forward) == 0) r.fail(node, key, "eye and look_at are the same point");
-  if (parallel(normalize(forward), cam.up)) {
-    r.fail(node, key, "the view direction is parallel to up");
+  if (std::string problem = render::camera_problem(cam.fixed); !problem.empty()) {
+    r.fail(node, key, problem);
   }
   return cam;
 }

@@ -4,6 +4,7 @@
 #include "adaptor/config/config_colormap_parse.hpp"
 #include "adaptor/config/config_shading_parse.hpp"
 #include "render/core/value_bounds.hpp"
+#include "render/scene/camera.hpp"
 
 namespace tetray::config {
 namespace {
@@ -13,13 +14,12 @@ render::Vec3d point_in_range(const YamlReader& r, const YAML::Node& node, std::s
   return {v[0], v[1], v[2]};
 }
 
-// A plane normal or light direction, scaled by its largest component (no overflow or underflow) and
-// normalized.
+// A plane normal or light direction as a unit vector, whatever its scale.
 render::Vec3d plane_normal(const YamlReader& r, const YAML::Node& node, std::string_view key) {
   const auto v = r.numbers(node, key, 3, 3);
-  const double largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-  if (largest == 0) r.fail(node, key, "must not be the zero vector");
-  return normalize(render::Vec3d{v[0] / largest, v[1] / largest, v[2] / largest});
+  const render::Vec3d unit = render::unit_direction({v[0], v[1], v[2]});
+  if (dot(unit, unit) == 0) r.fail(node, key, "must not be the zero vector");
+  return unit;
 }
 
 void parse_clip_box(const YamlReader& r, const YAML::Node& node, const std::string& key,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace tetray::render {
 
@@ -28,6 +29,32 @@ CameraFrame frame_of(const Camera& camera) {
 }
 
 }  // namespace
+
+Vec3d unit_direction(Vec3d v) {
+  // Divided by its largest component first, so that neither [1e-300, 0, 0] underflows nor
+  // [1e300, 0, 0] overflows in the length.
+  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return largest > 0 ? normalize((1 / largest) * v) : v;
+}
+
+std::string camera_problem(const Camera& camera) {
+  if (!finite(camera.eye)) return "the eye is not a finite point";
+  if (!finite(camera.look_at)) return "look_at is not a finite point";
+  if (!finite(camera.up)) return "up is not a finite direction";
+  if (!(camera.fov_deg >= kMinFovDeg && camera.fov_deg <= kMaxFovDeg)) {
+    std::ostringstream text;
+    text << "the field of view is " << camera.fov_deg << " degrees, outside [" << kMinFovDeg << ", "
+         << kMaxFovDeg << "]";
+    return text.str();
+  }
+  const Vec3d forward = unit_direction(camera.look_at - camera.eye);
+  const Vec3d up = unit_direction(camera.up);
+  if (dot(forward, forward) == 0) return "eye and look_at are the same point";
+  if (dot(up, up) == 0) return "up must not be the zero vector";
+  const Vec3d c = cross(forward, up);
+  if (!(dot(c, c) > 1e-12)) return "the view direction is parallel to up";
+  return {};
+}
 
 CameraFrame make_frame(const Camera& camera) {
   const CameraFrame frame = frame_of(camera);

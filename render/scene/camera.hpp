@@ -3,6 +3,7 @@
 // pixel's ray.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "render/core/vec.hpp"
@@ -29,6 +30,20 @@ struct CameraFrame {
   // center of pixel (i, j) is (i + 0.5, j + 0.5).
   Vec3d direction_at(double px, double py, int width, int height) const;
 };
+
+// The field of view a camera may have, in degrees (wider than 179 makes tan(fov/2) explode).
+inline constexpr double kMinFovDeg = 1;
+inline constexpr double kMaxFovDeg = 179;
+
+// `v` as a unit vector whatever its scale ([1e-300, 1e-300, 0] is [1, 1, 0] / sqrt(2)); the zero
+// vector stays zero.
+Vec3d unit_direction(Vec3d v);
+
+// What makes a camera unusable, or empty: a part that is not finite, a field of view outside
+// [kMinFovDeg, kMaxFovDeg], eye on look_at, up zero or within 1e-6 rad of the view direction
+// (either way). Scale-free: [1e-300, 0, 0] is a direction like [1, 0, 0]. The one check of every
+// camera a user gives (the config, its keyframes, tetray-render's options).
+std::string camera_problem(const Camera& camera);
 
 // Always finite: a degenerate camera (NaN, up zero or along the view) gives the frame of the
 // default Camera{} with the same image size.

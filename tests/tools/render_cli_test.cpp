@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "scenes/box_mesh.hpp"
 #include "support/png_read.hpp"
@@ -114,8 +116,14 @@ TEST(RenderCli, BadOptionValuesAreErrors) {
       {base + "--iso 0 -o x.jpg", ".exr or .png"},
       {base + "--iso abc -o x.png", "--iso"},
       {base + "-o x.png", "--iso"},
-      {base + "--iso 0 --eye 1,1,1 --look-at 1,1,1 -o " + dir / "x.png", "coincide"},
+      {base + "--iso 0 --fov nan -o x.png", "--fov"},
+      {base + "--iso 0 --fov=-inf -o x.png", "--fov"},
+      {base + "--iso 0 --eye 1,1,1 --look-at 1,1,1 -o " + dir / "x.png", "the same point"},
       {base + "--iso 0 --eye 0,5,0 --look-at 0,0,0 -o " + dir / "x.png", "parallel"},
+      {base + "--iso 0 --up 0,0,0 -o " + dir / "x.png", "up must not be the zero vector"},
+      {base + "--iso 0 --eye 3,2,1 --up 0,0,0 -o " + dir / "x.png",
+       "up must not be the zero vector"},
+      {base + "--iso 0 --up 1,0.7,1.3 -o " + dir / "x.png", "parallel"},
   };
   for (const auto& [arguments, mention] : cases) {
     const CommandResult run = run_render(arguments);
@@ -127,6 +135,41 @@ TEST(RenderCli, BadOptionValuesAreErrors) {
   const CommandResult run = run_render(base + many_isovalues + " -o x.png");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_TRUE(contains(run.output, "at most 16")) << run.output;
+}
+
+// The camera's up is a direction at any scale, as in the config: [1e-300, 1e-300, 0] draws what
+// [1, 1, 0] draws, and that view differs from the default up's.
+TEST(RenderCli, ATinyUpIsADirection) {
+  ScratchDir dir;
+  const std::string base = write_gyroid(dir) + " --field gyroid --iso 0 --size 48x32 ";
+  for (const char* up : {"1e-300,1e-300,0", "1,1,0", "0,1,0"}) {
+    const CommandResult run =
+        run_render(base + "--up " + up + " -o " + dir / (up + std::string(".png")));
+    ASSERT_EQ(run.exit_code, 0) << up << "\n" << run.output;
+  }
+  const auto tiny = testing::read_png_rgba8(dir / "1e-300,1e-300,0.png");
+  const auto unit = testing::read_png_rgba8(dir / "1,1,0.png");
+  const auto y = testing::read_png_rgba8(dir / "0,1,0.png");
+  EXPECT_GT(opaque_pixels(tiny), 48u * 32 / 10);
+  EXPECT_EQ(tiny.rgba, unit.rgba);
+  EXPECT_NE(tiny.rgba, y.rgba);
+}
+
+// A count attribute below zero took VTK's reader down with SIGSEGV; now an error names it.
+TEST(RenderCli, ANegativeCellCountIsAnError) {
+  ScratchDir dir;
+  const std::string grid = write_gyroid(dir);
+  std::ifstream in(grid, std::ios::binary);
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::size_t at = text.find("NumberOfCells=\"");
+  ASSERT_NE(at, std::string::npos);
+  text = text.substr(0, at + 15) + "-" + text.substr(at + 15);
+  std::ofstream(dir / "negative.vtu", std::ios::binary) << text;
+  const CommandResult run =
+      run_render(dir / "negative.vtu" + " --field gyroid --iso 0 -o " + dir / "out.png");
+  EXPECT_EQ(run.exit_code, 1) << run.output;  // an exit, not a signal
+  EXPECT_TRUE(contains(run.output, "NumberOfCells=\"-")) << run.output;
+  EXPECT_TRUE(contains(run.output, "a negative number")) << run.output;
 }
 
 }  // namespace

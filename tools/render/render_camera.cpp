@@ -20,25 +20,24 @@ void point_bounds(const std::vector<double>& xyz, render::Vec3d& lo, render::Vec
 
 render::Camera make_camera(const RenderOptions& options, const std::vector<double>& points,
                            std::string& error) {
+  const render::Vec3d up = options.up.value_or(render::Vec3d{0, 1, 0});
+  if (!options.eye) {
+    // The view the fit looks along, checked before fitting: a degenerate up makes a NaN frame.
+    error = render::camera_problem({kFitViewDirection, {0, 0, 0}, up, options.fov_deg});
+    if (!error.empty()) return {};
+  }
   render::Vec3d lo, hi;
   point_bounds(points, lo, hi);
-  const render::Vec3d up = options.up.value_or(render::Vec3d{0, 1, 0});
-  render::Camera camera = options.eye
-                              ? render::Camera{*options.eye,
-                                               options.look_at.value_or(0.5 * (lo + hi)),
-                                               up,
-                                               options.fov_deg,
-                                               options.width,
-                                               options.height}
-                              : render::fit_camera(lo, hi, kFitViewDirection, up, options.fov_deg,
-                                                   options.width, options.height);
-  const render::Vec3d forward = camera.look_at - camera.eye;
-  if (render::length(forward) == 0) {
-    error = "the camera's eye and look-at point coincide";
-  } else if (render::length(
-                 render::cross(render::normalize(forward), render::normalize(camera.up))) < 1e-6) {
-    error = "the camera's up direction is parallel to its view direction (or zero)";
-  }
+  const render::Camera camera =
+      options.eye ? render::Camera{*options.eye,
+                                   options.look_at.value_or(0.5 * (lo + hi)),
+                                   up,
+                                   options.fov_deg,
+                                   options.width,
+                                   options.height}
+                  : render::fit_camera(lo, hi, kFitViewDirection, up, options.fov_deg,
+                                       options.width, options.height);
+  error = render::camera_problem(camera);
   return camera;
 }
 

@@ -12,7 +12,8 @@
 
 namespace tetray::tools {
 
-// `points` xyz interleaved, at least one point. Empty `error` unless the view is degenerate.
+// `points` xyz interleaved, at least one point. Empty `error` unless the camera is unusable
+// (render::camera_problem, the same check the config puts on a camera).
 render::Camera make_camera(const RenderOptions& options, const std::vector<double>& points,
                            std::string& error);
 

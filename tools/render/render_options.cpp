@@ -2,11 +2,13 @@
 
 #include "render/core/value_bounds.hpp"
 #include "render/image/image_write.hpp"
+#include "render/scene/camera.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 
 namespace tetray::tools {
 namespace {
@@ -50,6 +52,12 @@ std::optional<std::pair<int, int>> parse_size(const std::string& text) {
   return std::pair{static_cast<int>(*w), static_cast<int>(*h)};
 }
 
+std::string text_of(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 CLI::Validator vec3_format() {
   return CLI::Validator(
       [](std::string& text) { return parse_vec3(text) ? "" : "expected X,Y,Z (three numbers)"; },
@@ -64,6 +72,18 @@ CLI::Validator size_format() {
                    : "expected WxH with whole sides in 1.." + std::to_string(kMaxImageSide);
       },
       "WxH");
+}
+
+// A finite number in [lo, hi]; CLI::Range lets NaN through (every comparison with it is false).
+CLI::Validator finite_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) {
+        const std::optional<double> value = parse_number(text);
+        return value && *value >= lo && *value <= hi
+                   ? std::string()
+                   : "expected a number in [" + text_of(lo) + ", " + text_of(hi) + "]";
+      },
+      "NUMBER");
 }
 
 CLI::Validator image_extension() {
@@ -92,7 +112,7 @@ void declare_options(CLI::App& app, RenderOptions& options, OptionTexts& texts) 
       ->needs("--eye");
   app.add_option("--up", texts.up, "camera up direction (default: +y)")->check(vec3_format());
   app.add_option("--fov", options.fov_deg, "vertical field of view in degrees")
-      ->check(CLI::Range(1.0, 179.0))
+      ->check(finite_in(render::kMinFovDeg, render::kMaxFovDeg))
       ->capture_default_str();
   app.add_option("--size", texts.size, "image size")->check(size_format())->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (default: every core)")
@@ -120,7 +140,8 @@ void check_isovalues(const std::vector<double>& isovalues) {
 void apply_texts(const OptionTexts& texts, RenderOptions& options) {
   if (!texts.eye.empty()) options.eye = parse_vec3(texts.eye);
   if (!texts.look_at.empty()) options.look_at = parse_vec3(texts.look_at);
-  if (!texts.up.empty()) options.up = parse_vec3(texts.up);
+  // At any scale, as the config takes it: [1e-300, 1e-300, 0] is the diagonal of x and y.
+  if (!texts.up.empty()) options.up = render::unit_direction(*parse_vec3(texts.up));
   std::tie(options.width, options.height) = *parse_size(texts.size);
 }
 
