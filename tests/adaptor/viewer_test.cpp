@@ -35,10 +35,9 @@ class Viewer : public ::testing::Test {
  protected:
   void SetUp() override {
     chromium_ = find_chromium();
-    if (chromium_.empty()) {
-      GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it): the viewer page "
-                      "is not tested here";
-    }
+    ASSERT_FALSE(chromium_.empty())
+        << "chromium is not installed (scripts/setup.sh installs it): the viewer page cannot be "
+           "tested";
     Status status;
     auto adaptor = Adaptor::create_from_yaml(
         MPI_COMM_WORLD, plane_config(out_.string(), "", "", "    orbit: {azimuth: [0, 90]}\n"),

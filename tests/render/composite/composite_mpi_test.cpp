@@ -156,9 +156,10 @@ TEST(CompositeOneRank, ReturnsAtOnceWithoutCopies) {
   EXPECT_EQ(stats.bytes_sent + stats.bytes_received, 0u);
 }
 
-TEST(CompositeErrors, DifferentImageSizesFailOnEveryRank) {
+// On one rank every image has the same size: ctest leaves the suite out there.
+TEST(CompositeErrorsOnTwoRanks, DifferentImageSizesFailOnEveryRank) {
   const World w = world();
-  if (w.size == 1) GTEST_SKIP() << "needs two ranks";
+  ASSERT_GE(w.size, 2) << "needs two ranks";
   Framebuffer image(64, w.rank == 0 ? 48 : 47);
   EXPECT_EQ(composite(image, MPI_COMM_WORLD, {}), MPI_ERR_ARG);
 }
