@@ -1,5 +1,5 @@
-# Instruction-set variants of a library's hot kernels (TETRAY_SIMD_TARGET=dispatch, README.md
-# "Instruction sets"), chosen at run time by render/isa.
+# Instruction-set variants of a library's hot kernels (TETRAY_SIMD_TARGET=dispatch,
+# docs/building.md "Instruction sets"), chosen at run time by render/isa.
 #
 # An inline function or template instantiation (std::vector's members, std::sort, xsimd, oneTBB)
 # compiled in two objects with different -march gets the same mangled name in both, and the

@@ -4,6 +4,7 @@
 
 #include "adaptor/config/config_parse.hpp"
 #include "adaptor/step/step_runner.hpp"
+#include "render/isa/isa.hpp"
 
 namespace tetray {
 namespace {
@@ -32,9 +33,10 @@ Status duplicate(MPI_Comm comm, Communicator& out) {
 Adaptor::Adaptor(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Adaptor::~Adaptor() = default;
 
-// Collective: every rank parses (the text or the file) for the communicator's size, the ranks
-// agree on the outcome, and the writer rank prepares the outputs. Whatever fails on one rank
-// before an agreement is that agreement's outcome, so no rank is left waiting in it.
+// Collective: every rank checks that its CPU runs the kernels and parses (the text or the file)
+// for the communicator's size, the ranks agree on the outcome, and the writer rank prepares the
+// outputs. Whatever fails on one rank before an agreement is that agreement's outcome, so no rank
+// is left waiting in it.
 template <typename Parse>
 std::unique_ptr<Adaptor> Adaptor::create_with(MPI_Comm comm, Parse&& parse, Status& status) {
   Communicator c;
@@ -43,6 +45,9 @@ std::unique_ptr<Adaptor> Adaptor::create_with(MPI_Comm comm, Parse&& parse, Stat
   std::unique_ptr<Impl> impl;
   try {
     status = guarded("create", [&] {
+      // First: a CPU without x86-64-v2 would fault in the first kernel of a dispatch build.
+      if (std::string lacks = render::isa::kernels_refusal(); !lacks.empty())
+        return Status{StatusCode::internal_error, "create: " + lacks};
       config::ParseResult parsed = parse(c.size);
       if (!parsed.config) return Status{StatusCode::config_error, parsed.error};
       impl = std::make_unique<Impl>(c, std::move(*parsed.config));

@@ -5,45 +5,49 @@
 
 #include <array>
 #include <cstddef>
-#include <optional>
 #include <string>
-#include <string_view>
+
+#include "render/isa/cpu_choice.hpp"
 
 namespace tetray::render::isa {
 
-// The x86-64 micro-architecture levels of the variants: x86-64-v2 (SSE4.2), x86-64-v3 (AVX2,
-// FMA, BMI) and x86-64-v4 (AVX-512 F, BW, CD, DQ, VL), in increasing order.
-enum class Isa { sse4_2, avx2, avx512 };
-inline constexpr std::array kIsas = {Isa::sse4_2, Isa::avx2, Isa::avx512};
+// This CPU's features, from __builtin_cpu_supports; none in a build without variants.
+CpuFeatures this_cpu();
 
-// "sse4.2", "avx2", "avx512": the names TETRAY_ISA takes.
-const char* to_string(Isa isa);
-std::optional<Isa> parse(std::string_view name);
-
-// Whether the CPU (and the operating system) can run the variant; false in a build without
+// Whether this CPU (and the operating system) can run the variant; false in a build without
 // variants.
 bool cpu_supports(Isa isa);
+
+// Why this CPU cannot run the kernels of a dispatch build (it lacks part of x86-64-v2), naming
+// what it lacks; empty where it can, and in a build without variants. Adaptor creation returns it
+// as its error, before anything else.
+std::string kernels_refusal();
 
 // True in a dispatch build (TETRAY_SIMD_TARGET=dispatch), where the kernels exist per Isa.
 bool dispatched();
 
 // The variant the kernels run with. Chosen on first use: the one TETRAY_ISA names, or the best
 // the CPU supports when it is unset or names one the CPU lacks (see choice_note()). A build
-// without variants has none: there it is Isa::sse4_2 and names nothing (check dispatched()).
+// without variants, or a CPU without one, has none: there it is Isa::sse4_2 and names nothing
+// (check dispatched() and kernels_refusal()).
 Isa active();
+
+// The variant a kernel call runs: active(), or a std::runtime_error with kernels_refusal() on a
+// CPU that runs no variant, where no variant's code may ever run (it would fault).
+Isa kernel_variant();
 
 // Makes `isa` the active variant from now on (tests, benchmarks); false and no change when the
 // build is not a dispatch build or the CPU lacks it.
 bool activate(Isa isa);
 
 // One line for the log: the variant and why it was chosen ("avx512: the best this CPU
-// supports"), or the build's fixed target.
+// supports"), the refusal on a CPU that runs none, or the build's fixed target.
 std::string choice_note();
 
 // The kernels of one library per variant, in kIsas order: `tables[k]` is compiled for kIsas[k].
 template <typename Kernels>
 const Kernels& kernels(const std::array<const Kernels*, kIsas.size()>& tables) {
-  return *tables[static_cast<std::size_t>(active())];
+  return *tables[static_cast<std::size_t>(kernel_variant())];
 }
 
 }  // namespace tetray::render::isa

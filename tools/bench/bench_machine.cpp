@@ -26,6 +26,8 @@ std::string cpu_model() {
 // flags as the renderer (TETRAY_SIMD_TARGET), so its predefined macros name the instruction set
 // the kernels use.
 std::string simd_target() {
+  if (render::isa::dispatched() && !render::isa::kernels_refusal().empty())
+    return "no (dispatch: this CPU lacks x86-64-v2)";
   if (render::isa::dispatched())
     return std::string(render::isa::to_string(render::isa::active())) + " (dispatch)";
 #if defined(__AVX512F__)

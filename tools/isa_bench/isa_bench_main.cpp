@@ -63,6 +63,10 @@ std::vector<render::isa::Isa> variants() {
 }
 
 int run(int n, int size_px, int rounds) {
+  if (const std::string lacks = render::isa::kernels_refusal(); !lacks.empty()) {
+    std::fprintf(stderr, "tetray-isa-bench: %s\n", lacks.c_str());
+    return 1;
+  }
   const GyroidTwist scene = make_gyroid_twist(n, 0.2);
   render::TetVolume volume;
   render::Bvh bvh;

@@ -11,6 +11,7 @@ extern "C" const TraceKernels TETRAY_ISA_TABLE(trace) = {&trace,
                                                          &TraceStats::operator+=,
                                                          &has_transparency,
                                                          &trace_layers,
-                                                         &layer_view_depths};
+                                                         &layer_view_depths,
+                                                         &kCullingKernels};
 
 }  // namespace tetray::render

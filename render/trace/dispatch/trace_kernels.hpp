@@ -1,9 +1,11 @@
 // The table of the trace library's instruction-set variants (cmake/TetrayIsa.cmake): every
 // function trace.cpp and shadow_rays.cpp define, as the dispatch build compiles those files only
-// per variant (trace_dispatch.cpp defines them for the rest of the program).
+// per variant (trace_dispatch.cpp defines them for the rest of the program), and the variant's
+// copy of the frustum and straddle tests for the tests.
 #pragma once
 
 #include "render/isa/isa.hpp"
+#include "render/trace/culling_kernels.hpp"
 #include "render/trace/shadow_rays.hpp"
 #include "render/trace/trace.hpp"
 
@@ -19,6 +21,9 @@ struct TraceKernels {
   decltype(&has_transparency) any_transparent;
   decltype(&trace_layers) trace_layered;
   decltype(&layer_view_depths) view_depths_of_layer;
+  // Not called by the dispatch: the variant's own copy of the frustum and straddle tests, for the
+  // tests of render/trace (culling_kernels.hpp).
+  const CullingKernels* culling;
 };
 
 }  // namespace tetray::render

@@ -4,7 +4,10 @@
 # - no baseline object (the render libraries and the adaptor without the variants) holds an AVX
 #   or AVX-512 instruction;
 # - the variants hold the instructions of their level: AVX-512 in avx512, AVX but no AVX-512 in
-#   avx2, neither in sse4_2 (which also shows that the search below finds them).
+#   avx2, neither in sse4_2 (which also shows that the search below finds them);
+# - no variant object runs code when the program is loaded (a static initialiser, a constructor
+#   function): that would run before anything checked the CPU, and fault on one without the
+#   variant's instructions.
 # Arguments: NM, OBJDUMP, AR, ARCHIVES (the baseline libraries), VARIANTS (ISA=OBJECT=SYMBOL),
 # WORK_DIR (scratch space for the archives' members).
 cmake_minimum_required(VERSION 3.20)
@@ -36,6 +39,14 @@ foreach(entry IN LISTS VARIANTS)
   string(STRIP "${symbols}" symbols)
   if(nm_failed OR NOT symbols MATCHES "^[0-9a-f]+ [DR] ${symbol}$")
     string(APPEND failures "${name}: the global symbols must be ${symbol} alone, not:\n${symbols}\n")
+  endif()
+  execute_process(COMMAND ${OBJDUMP} -h ${object}
+    COMMAND grep -E -o "[.](init_array|preinit_array|ctors|init)([.][0-9]+)?( |$)"
+    OUTPUT_VARIABLE load_time_sections)
+  if(NOT load_time_sections STREQUAL "")
+    string(REPLACE "\n" " " load_time_sections "${load_time_sections}")
+    string(APPEND failures "${name}: code run at load time, before the CPU is checked: "
+      "sections ${load_time_sections}\n")
   endif()
   matching_instructions(${object} "${avx_pattern}" avx)
   matching_instructions(${object} "${avx512_pattern}" avx512)

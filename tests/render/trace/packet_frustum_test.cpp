@@ -2,7 +2,8 @@
 // conservative: a tet or box it rejects is met by no pixel ray of the tile, checked here in
 // double precision against every pixel's exact ray, on tets placed across the frustum's sides,
 // far from the origin, behind the eye and beyond a depth bound. And it must cull what lies
-// clearly outside, or it saves nothing.
+// clearly outside, or it saves nothing. Every copy of the frustum's code is checked: the
+// baseline's and each instruction-set variant's (culling_copies.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,10 +14,10 @@
 #include <random>
 #include <string>
 
+#include "culling_copies.hpp"
 #include "render/scene/camera.hpp"
 #include "render/trace/isopolygon.hpp"
 #include "render/trace/packet_frustum.hpp"
-#include "render/trace/ray_packet.hpp"
 
 namespace tetray::test {
 namespace {
@@ -28,18 +29,33 @@ using Points = std::array<Vec3d, 4>;
 constexpr int kTile = 16;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Four points relative to the eye, component c of point k at [c][k].
+using Lanes = render::EyeRelativeTet;
+
+// A tile of kTile x kTile pixels (its part in the image) and its frustum, made and tested by one
+// copy of the frustum's code.
 struct Tile {
   render::Camera camera;
   render::CameraFrame frame;
   Vec3f eye;  // the packet's float eye, relative to the origin
   int x0 = 0, y0 = 0;
+  const render::CullingKernels* kernels = nullptr;
   render::PacketFrustum frustum;
+
+  bool misses_hull(const Lanes& q) const { return kernels->misses_hull(frustum, q); }
+  bool outside_depths(const Lanes& q, float tmax_bound) const {
+    return kernels->outside_depths(frustum, q, tmax_bound);
+  }
+  bool misses_box(Vec3f lo, Vec3f hi) const { return kernels->misses_box(frustum, lo, hi); }
 };
 
-Tile make_tile(const render::Camera& camera, Vec3d origin, float magnitude, int x0, int y0) {
-  Tile tile{camera, render::make_frame(camera), {}, x0, y0, {}};
+Tile make_tile(const render::CullingKernels& kernels, const render::Camera& camera, Vec3d origin,
+               float magnitude, int x0, int y0) {
+  Tile tile{camera, render::make_frame(camera), {}, x0, y0, &kernels, {}};
   tile.eye = static_cast<Vec3f>(camera.eye - origin);
-  tile.frustum = render::tile_frustum<kTile>(camera, tile.frame, magnitude, x0, y0);
+  tile.frustum =
+      kernels.packet_frustum(camera, tile.frame, x0, y0, std::min(x0 + kTile, camera.width) - 1,
+                             std::min(y0 + kTile, camera.height) - 1, magnitude);
   return tile;
 }
 
@@ -135,11 +151,9 @@ std::string ray_that_meets(const Tile& tile, Meets&& meets) {
 }
 
 // q = p - eye in float, as the renderer computes it from float vertices.
-void relative_lanes(const Points& p, Vec3f eye, render::simd::Float4 (&q)[3]) {
-  alignas(16) float lanes[3][4];
+void relative_lanes(const Points& p, Vec3f eye, Lanes& q) {
   for (int k = 0; k < 4; ++k)
-    for (int c = 0; c < 3; ++c) lanes[c][k] = static_cast<float>(p[k][c]) - eye[c];
-  for (int c = 0; c < 3; ++c) q[c] = render::simd::Float4::load_aligned(lanes[c]);
+    for (int c = 0; c < 3; ++c) q[c][k] = static_cast<float>(p[k][c]) - eye[c];
 }
 
 // Whether the tet keeps a volume that its face planes resolve (rounding to float flattens tiny
@@ -190,10 +204,10 @@ void check_conservative(const Tile& tile, double far, double pixels, std::mt1993
     const Points p =
         as_stored(tet_around(tile, at_pixel(tile, column(rng), row(rng), z), z, size(rng), rng));
     if (!is_solid(p)) continue;
-    render::simd::Float4 q[3];
+    Lanes q;
     relative_lanes(p, tile.eye, q);
     ++counts.tested;
-    if (!tile.frustum.misses_hull(q) && !tile.frustum.outside_depths(q, kInfinity)) continue;
+    if (!tile.misses_hull(q) && !tile.outside_depths(q, kInfinity)) continue;
     ++counts.culled;
     EXPECT_EQ(ray_that_meets(tile, [&](Vec3d e, Vec3d d) { return ray_in_tet(e, d, p); }), "")
         << label << ": a culled tet is met by a ray, tet " << n;
@@ -232,12 +246,15 @@ std::vector<std::array<int, 2>> tile_corners(const render::Camera& c) {
           {last_x / 2 / kTile * kTile, last_y / 2 / kTile * kTile}};
 }
 
-TEST(PacketFrustum, CulledTetsAreMetByNoRay) {
+class PacketFrustum : public CullingCopies {};
+TETRAY_FOR_EACH_CULLING_COPY(PacketFrustum);
+
+TEST_P(PacketFrustum, CulledTetsAreMetByNoRay) {
   std::mt19937 rng(5);
   Counts counts;
   for (const render::Camera& camera : frustum_cameras())
     for (const auto& corner : tile_corners(camera)) {
-      const Tile tile = make_tile(camera, {}, 10.0f, corner[0], corner[1]);
+      const Tile tile = make_tile(kernels(), camera, {}, 10.0f, corner[0], corner[1]);
       check_conservative(tile, 3.0, 3.0, rng, counts,
                          "tile " + std::to_string(corner[0]) + "," + std::to_string(corner[1]));
     }
@@ -248,7 +265,7 @@ TEST(PacketFrustum, CulledTetsAreMetByNoRay) {
 // Far from the origin float coordinates are coarse: at 1e5 an ulp is 0.008, the footprint of
 // 10 pixels at depth 1 here, so isopolygon corners leave their tet's hull by many pixels'
 // footprints and the slack must cover that.
-TEST(PacketFrustum, CulledTetsAreMetByNoRayFarFromTheOrigin) {
+TEST_P(PacketFrustum, CulledTetsAreMetByNoRayFarFromTheOrigin) {
   std::mt19937 rng(9);
   Counts counts;
   for (const double offset : {1e3, 1e5}) {
@@ -257,8 +274,8 @@ TEST(PacketFrustum, CulledTetsAreMetByNoRayFarFromTheOrigin) {
       camera.eye = camera.eye + shift;
       camera.look_at = camera.look_at + shift;
       for (const auto& corner : tile_corners(camera)) {
-        const Tile tile =
-            make_tile(camera, {}, static_cast<float>(1.1 * offset), corner[0], corner[1]);
+        const Tile tile = make_tile(kernels(), camera, {}, static_cast<float>(1.1 * offset),
+                                    corner[0], corner[1]);
         check_conservative(tile, 30.0, 20.0, rng, counts, "far tile");
       }
     }
@@ -266,10 +283,10 @@ TEST(PacketFrustum, CulledTetsAreMetByNoRayFarFromTheOrigin) {
   EXPECT_GT(counts.culled, counts.tested / 3);
 }
 
-TEST(PacketFrustum, CullsTetsClearlyOutsideBehindAndBeyond) {
+TEST_P(PacketFrustum, CullsTetsClearlyOutsideBehindAndBeyond) {
   std::mt19937 rng(3);
   const render::Camera camera = frustum_cameras()[0];
-  const Tile tile = make_tile(camera, {}, 10.0f, 512, 256);
+  const Tile tile = make_tile(kernels(), camera, {}, 10.0f, 512, 256);
   std::uniform_real_distribution<double> along(0, kTile), away(2.5, 12), depth(0.5, 3);
   const double x0 = tile.x0, y0 = tile.y0, x1 = x0 + kTile, y1 = y0 + kTile;
   for (int n = 0; n < 200; ++n) {
@@ -282,31 +299,31 @@ TEST(PacketFrustum, CullsTetsClearlyOutsideBehindAndBeyond) {
                                     {x0 + a, y1 - 0.5 + b}};
     const auto& pixel = positions[n % 4];
     const Points p = as_stored(tet_around(tile, at_pixel(tile, pixel[0], pixel[1], z), z, 1, rng));
-    render::simd::Float4 q[3];
+    Lanes q;
     relative_lanes(p, tile.eye, q);
-    EXPECT_TRUE(tile.frustum.misses_hull(q)) << "side " << n % 4;
+    EXPECT_TRUE(tile.misses_hull(q)) << "side " << n % 4;
   }
   // Behind the eye, across the view axis (outside no single side plane).
   const Points behind =
       as_stored(tet_around(tile, at_pixel(tile, x0 + 8, y0 + 8, -1), -1, 40, rng));
-  render::simd::Float4 q[3];
+  Lanes q;
   relative_lanes(behind, tile.eye, q);
-  EXPECT_TRUE(tile.frustum.outside_depths(q, kInfinity));
+  EXPECT_TRUE(tile.outside_depths(q, kInfinity));
   // In the middle of the tile at depth 2: beyond a bound of 1.5, not beyond 2.5.
   const Points ahead = as_stored(tet_around(tile, at_pixel(tile, x0 + 8, y0 + 8, 2), 2, 3, rng));
   relative_lanes(ahead, tile.eye, q);
-  EXPECT_FALSE(tile.frustum.misses_hull(q));
-  EXPECT_FALSE(tile.frustum.outside_depths(q, kInfinity));
-  EXPECT_TRUE(tile.frustum.outside_depths(q, 1.5f));
-  EXPECT_FALSE(tile.frustum.outside_depths(q, 2.5f));
+  EXPECT_FALSE(tile.misses_hull(q));
+  EXPECT_FALSE(tile.outside_depths(q, kInfinity));
+  EXPECT_TRUE(tile.outside_depths(q, 1.5f));
+  EXPECT_FALSE(tile.outside_depths(q, 2.5f));
 }
 
-TEST(PacketFrustum, CulledBoxesAreMetByNoRay) {
+TEST_P(PacketFrustum, CulledBoxesAreMetByNoRay) {
   std::mt19937 rng(11);
   int culled = 0;
   for (const render::Camera& camera : frustum_cameras())
     for (const auto& corner : tile_corners(camera)) {
-      const Tile tile = make_tile(camera, {}, 10.0f, corner[0], corner[1]);
+      const Tile tile = make_tile(kernels(), camera, {}, 10.0f, corner[0], corner[1]);
       std::uniform_real_distribution<double> column(tile.x0 - 30.0, tile.x0 + kTile + 30.0);
       std::uniform_real_distribution<double> row(tile.y0 - 30.0, tile.y0 + kTile + 30.0);
       std::uniform_real_distribution<double> depth(0.2, 3.0), size(0.1, 20);
@@ -319,7 +336,7 @@ TEST(PacketFrustum, CulledBoxesAreMetByNoRay) {
           lo = render::min(lo, static_cast<Vec3f>(v));
           hi = render::max(hi, static_cast<Vec3f>(v));
         }
-        if (!tile.frustum.misses_box(lo - tile.eye, hi - tile.eye)) continue;
+        if (!tile.misses_box(lo - tile.eye, hi - tile.eye)) continue;
         ++culled;
         const Vec3d lo_d = static_cast<Vec3d>(lo), hi_d = static_cast<Vec3d>(hi);
         EXPECT_EQ(

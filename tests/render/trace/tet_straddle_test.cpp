@@ -2,7 +2,9 @@
 // same rule: random tets over a small vertex store, every batch size from 1 to the SIMD width,
 // batches ending at the last tet of the volume, isovalues on vertex values, between them and
 // outside their range. And the corner columns it is built on (simd::quad_columns), on groups
-// that end at an inaccessible page: nothing past the last group may be read.
+// that end at an inaccessible page: nothing past the last group may be read. Every copy of the
+// straddle code is checked: the baseline's and each instruction-set variant's, whose SIMD width
+// and corner loads differ (culling_copies.hpp).
 #include <gtest/gtest.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -12,8 +14,9 @@
 #include <cstdint>
 #include <initializer_list>
 #include <random>
+#include <string>
 
-#include "render/trace/tet_straddle.hpp"
+#include "culling_copies.hpp"
 
 namespace tetray::test {
 namespace {
@@ -46,7 +49,10 @@ IsoSet isovalues(std::initializer_list<float> values) {
   return isos;
 }
 
-TEST(TetStraddle, EveryBatchMatchesTheOneTetTest) {
+class TetStraddle : public CullingCopies {};
+TETRAY_FOR_EACH_CULLING_COPY(TetStraddle);
+
+TEST_P(TetStraddle, EveryBatchMatchesTheOneTetTest) {
   std::mt19937 rng(7);
   const TetVolume volume = random_volume(rng, 40, 200);
   const float on_vertex = volume.vertices[3].f;
@@ -55,10 +61,10 @@ TEST(TetStraddle, EveryBatchMatchesTheOneTetTest) {
   const auto tets = static_cast<std::uint32_t>(volume.tets.size());
   int straddling = 0;
   for (const IsoSet& isos : sets) {
-    for (int count = 1; count <= render::simd::kWidth; ++count) {
+    for (int count = 1; count <= kernels().simd_width; ++count) {
       // Every start, the last batches ending exactly at the volume's last tet.
       for (std::uint32_t first = 0; first + count <= tets; ++first) {
-        const std::uint64_t bits = render::straddling_tets(volume, first, count, isos);
+        const std::uint64_t bits = kernels().straddling_in_batch(volume, first, count, isos);
         for (int k = 0; k < count; ++k) {
           const bool expected = tet_straddles(volume, first + k, isos);
           straddling += expected;
@@ -74,7 +80,7 @@ TEST(TetStraddle, EveryBatchMatchesTheOneTetTest) {
 
 // A leaf's tets in lane batches (leaf_straddling_tets): every leaf size up to 64 tets, at every
 // start of the volume, bit for bit the one-tet test, nothing past the leaf.
-TEST(TetStraddle, EveryLeafMatchesTheOneTetTest) {
+TEST_P(TetStraddle, EveryLeafMatchesTheOneTetTest) {
   std::mt19937 rng(11);
   const TetVolume volume = random_volume(rng, 40, 120);
   const IsoSet isos = isovalues({-0.3f, 0.4f});
@@ -82,7 +88,7 @@ TEST(TetStraddle, EveryLeafMatchesTheOneTetTest) {
   int straddling = 0;
   for (std::uint32_t count = 1; count <= 64; ++count)
     for (std::uint32_t first = 0; first + count <= tets; first += 7) {
-      const std::uint64_t bits = render::leaf_straddling_tets(volume, first, count, isos);
+      const std::uint64_t bits = kernels().straddling_in_leaf(volume, first, count, isos);
       for (std::uint32_t k = 0; k < count; ++k) {
         const bool expected = tet_straddles(volume, first + k, isos);
         straddling += expected;
@@ -122,21 +128,31 @@ class GuardedPage {
   std::byte* base_ = nullptr;
 };
 
-TEST(TetStraddle, CornerColumnsReadNothingPastTheGroups) {
+TEST_P(TetStraddle, CornerColumnsReadNothingPastTheGroups) {
   const GuardedPage guarded;
   ASSERT_TRUE(guarded.ok());
-  for (int count = 1; count <= render::simd::kWidth; ++count) {
+  const int width = kernels().simd_width;
+  for (int count = 1; count <= width; ++count) {
     std::int32_t* groups = guarded.ints_before_guard(4 * count);
     for (int i = 0; i < 4 * count; ++i) groups[i] = 1000 + i;
-    render::simd::Ints column[4];
-    render::simd::quad_columns(groups, count, column);
-    alignas(64) std::int32_t lanes[render::simd::kWidth];
-    for (int c = 0; c < 4; ++c) {
-      column[c].store_aligned(lanes);
-      for (int k = 0; k < render::simd::kWidth; ++k)
-        EXPECT_EQ(lanes[k], k < count ? 1000 + 4 * k + c : 0)
+    std::int32_t column[4][16];
+    kernels().quad_columns(groups, count, column);
+    for (int c = 0; c < 4; ++c)
+      for (int k = 0; k < width; ++k)
+        EXPECT_EQ(column[c][k], k < count ? 1000 + 4 * k + c : 0)
             << "element " << c << ", lane " << k << ", " << count << " groups";
-    }
+  }
+}
+
+// The copies' widths: the variants' registers hold 4, 8 and 16 floats (a copy compiled for the
+// wrong target would be checked at the wrong width).
+TEST_P(TetStraddle, TheCopysWidthIsItsTargets) {
+  const std::string& name = GetParam().name;
+  const int expected = name == "avx512" ? 16 : name == "avx2" ? 8 : name == "sse4_2" ? 4 : 0;
+  if (expected != 0) {
+    EXPECT_EQ(kernels().simd_width, expected) << name;
+  } else {
+    EXPECT_EQ(kernels().simd_width, render::simd::kWidth) << "the baseline's, as compiled here";
   }
 }
 
