@@ -21,7 +21,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWit
 cmake --build build-fuzz
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp
-for target in fuzz_config fuzz_vtu fuzz_pvtu fuzz_pvd fuzz_views; do
+for target in fuzz_config fuzz_vtu fuzz_vtu_counts fuzz_pvtu fuzz_pvd fuzz_views; do
   seeds=tests/fuzz/corpus/$target
   corpus=build-fuzz/corpus/$target  # new inputs; emptied first, so a run depends on the seeds
   artifacts=build-fuzz/artifacts/$target
