@@ -16,6 +16,8 @@ class CellTets {
   // differs from the last split's), or `mesh` itself when it holds no cells. Empty on success,
   // else what is wrong with the cells (the first bad cell, its type, the views).
   std::string resolve(const MeshView& mesh, std::uint64_t topology_epoch, MeshView& out);
+  // The next resolve splits again, whatever its epoch.
+  void forget() { epoch_ = ~std::uint64_t{0}; }
 
  private:
   std::string split(const MeshView& mesh);

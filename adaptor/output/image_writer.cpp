@@ -99,7 +99,10 @@ std::string ImageWriter::append_to_movie(const ImageJob& job) {
     }
   }
   const render::WriteResult appended = movie->append(job.image);
-  return appended.ok ? std::string() : appended.message;
+  if (appended.ok) return {};
+  // A frame torn in the file: the movie is not kept, and the scene's next image starts another.
+  movies_.erase(job.record.scene);
+  return appended.message;
 }
 
 void ImageWriter::write(ImageJob& job) {

@@ -159,7 +159,9 @@ std::string prepare_scene_outputs(const config::Output& output, const std::strin
     if (auto e = make_directory(dir); !e.empty()) return e;
   }
   const std::string prefix = scene + '_';
-  const auto is_image = [&](const std::string& name) {
+  // The images and the movies (a movie is never per view).
+  const auto is_image_or_movie = [&](const std::string& name) {
+    if (is_numbered_name(name, prefix, ".mp4")) return true;
     for (const char* extension : {".png", ".exr"}) {
       if (is_numbered_name(name, prefix, extension) ||
           is_view_image_name(name, prefix, extension)) {
@@ -170,7 +172,7 @@ std::string prepare_scene_outputs(const config::Output& output, const std::strin
   };
   const std::string table = cinema_path(output.directory, scene);
   const std::string script = cinema_script_path(output.directory, scene);
-  if (auto e = remove_stale_temporaries_in(images, is_image); !e.empty()) return e;
+  if (auto e = remove_stale_temporaries_in(images, is_image_or_movie); !e.empty()) return e;
   const auto is_table = [&](const std::string& n) {
     return named_as(table)(n) || named_as(script)(n);
   };

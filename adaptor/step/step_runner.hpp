@@ -83,6 +83,9 @@ class Adaptor::Impl {
   // validate.cpp. A mesh of cells comes back in `tet_mesh` as its tets.
   Status validate_step(std::int64_t step, double time, const MeshView& mesh,
                        std::span<const FieldView> fields, MeshView& tet_mesh);
+  Status split_and_validate(const MeshView& mesh, std::span<const FieldView> fields,
+                            MeshView& tet_mesh);
+  void forget_topology();  // the split and tie keys are made again at the next step
   Status validate(const MeshView& mesh, std::span<const FieldView> fields);
   Status check_scene_fields(const MeshView& mesh, std::span<const FieldView> fields);
   std::string convert_topology(const MeshView& mesh);

@@ -32,6 +32,17 @@ Status Adaptor::Impl::validate_step(std::int64_t step, double time, const MeshVi
                                     std::span<const FieldView> fields, MeshView& tet_mesh) {
   begin_step(step, time);
   if (Status pending = take_pending_error(); !pending.ok()) return pending;
+  Status status = split_and_validate(mesh, fields, tet_mesh);
+  // The cells' split and the tie keys follow the points' positions at a new topology and are
+  // kept while the solver says the topology holds: a step whose arrays failed their checks (a
+  // NaN coordinate) leaves none behind, or its repair, passed as new geometry only, would still
+  // be cut and tied by the bad positions.
+  if (status.failed()) forget_topology();
+  return status;
+}
+
+Status Adaptor::Impl::split_and_validate(const MeshView& mesh, std::span<const FieldView> fields,
+                                         MeshView& tet_mesh) {
   const render::Stopwatch split;
   if (std::string e = cell_tets_.resolve(mesh, epochs_.topology, tet_mesh); !e.empty()) {
     return invalid(e);
@@ -39,6 +50,11 @@ Status Adaptor::Impl::validate_step(std::int64_t step, double time, const MeshVi
   if (SceneState* first = first_due_scene()) first->record.ingest_ms += split.ms();
   local_tets_ = tet_mesh.tets.count;
   return validate(tet_mesh, fields);
+}
+
+void Adaptor::Impl::forget_topology() {
+  cell_tets_.forget();
+  converted_topology_ = ~std::uint64_t{0};
 }
 
 Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> fields) {

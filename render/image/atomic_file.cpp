@@ -111,6 +111,17 @@ WriteResult remove_stale_temporaries(const std::string& directory,
   return {};
 }
 
+std::string create_temporary_file(const std::string& path, std::string& error) {
+  std::string temporary;
+  const int fd = create_temporary(path, temporary);
+  if (fd < 0) {
+    error = failure("cannot create a temporary file for", path, errno).message;
+    return {};
+  }
+  ::close(fd);
+  return temporary;
+}
+
 WriteResult write_file_atomically(const std::string& path, std::span<const unsigned char> bytes) {
   std::string temporary;
   const int fd = create_temporary(path, temporary);

@@ -84,8 +84,14 @@ EncodedImages encode_images(const Framebuffer& image, bool exr, bool png,
 // temporary file is removed and an existing file at `path` is left as it was.
 WriteResult write_file_atomically(const std::string& path, std::span<const unsigned char> bytes);
 
-// The temporary file write_file_atomically names `<target>.tmp<pid>-<counter>`: only a process
-// killed between creating and renaming it leaves one behind.
+// A new, empty temporary file next to `path`, named as write_file_atomically names its own, for
+// a writer that fills it over time and renames it over `path` once whole (the movie). Returns
+// its name, or empty with `error` set.
+std::string create_temporary_file(const std::string& path, std::string& error);
+
+// The temporary file write_file_atomically (and create_temporary_file) names
+// `<target>.tmp<pid>-<counter>`: only a process killed between creating and renaming it leaves
+// one behind.
 struct TemporaryName {
   std::string target;  // the file name it was to be renamed to
   long pid = 0;        // the process that created it

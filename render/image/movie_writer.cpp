@@ -8,7 +8,12 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <new>
 #include <vector>
@@ -58,6 +63,13 @@ void quiet_default_logging() {
   if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_ERROR);
 }
 
+// A directory where the movie is to go could not be replaced by it at close: said at create.
+std::string replace_problem(const std::string& path) {
+  struct stat found {};
+  if (::lstat(path.c_str(), &found) != 0 || !S_ISDIR(found.st_mode)) return {};
+  return "cannot create the file: " + std::string(std::strerror(EISDIR));
+}
+
 }  // namespace
 
 std::string movie_codec_name() {
@@ -66,7 +78,8 @@ std::string movie_codec_name() {
 }
 
 struct MovieWriter::State {
-  std::string path;
+  std::string path;           // the name the movie takes once closed
+  std::string temporary;      // the file written until then; empty once renamed
   int width = 0, height = 0;  // of the images; the frames have even sides
   AVFormatContext* format = nullptr;
   AVCodecContext* codec = nullptr;
@@ -77,14 +90,22 @@ struct MovieWriter::State {
   std::vector<std::uint8_t> rgb;  // the padded frame, RGB24
   int frames = 0;
   bool closed = false;
+  bool broken = false;  // a frame failed midway: the file may be torn, and is not kept
 
+  // A movie never closed (or whose close failed) is abandoned: its temporary file goes.
   ~State() {
     sws_freeContext(to_yuv);
     av_packet_free(&packet);
     av_frame_free(&frame);
     avcodec_free_context(&codec);
-    if (format && format->pb) avio_closep(&format->pb);
+    discard();
     avformat_free_context(format);
+  }
+
+  void discard() {
+    if (format && format->pb) avio_closep(&format->pb);
+    if (!temporary.empty()) ::unlink(temporary.c_str());
+    temporary.clear();
   }
 
   WriteResult failed(const std::string& what, int code) const {
@@ -93,6 +114,7 @@ struct MovieWriter::State {
 
   std::string open(const MovieOptions& options);
   WriteResult encode(const AVFrame* input);
+  WriteResult finish();
   void pad_rgb(const Framebuffer& image);
 };
 
@@ -122,11 +144,16 @@ std::string MovieWriter::State::open(const MovieOptions& options) {
   if (rc < 0) return std::string("cannot open the ") + found->name + " encoder: " + av_text(rc);
   if ((rc = avcodec_parameters_from_context(stream->codecpar, codec)) < 0) return av_text(rc);
   stream->time_base = codec->time_base;
-  if ((rc = avio_open(&format->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0) {
-    return "cannot create the file: " + av_text(rc);
+  if (std::string problem = replace_problem(path); !problem.empty()) return problem;
+  std::string error;
+  temporary = create_temporary_file(path, error);
+  if (temporary.empty()) return error;
+  if ((rc = avio_open(&format->pb, temporary.c_str(), AVIO_FLAG_WRITE)) < 0) {
+    return "cannot open '" + temporary + "': " + av_text(rc);
   }
-  // Fragments only where the caller flushes (after every frame), the index up front and each
-  // fragment self-contained: what a killed run leaves plays up to its last fragment.
+  // Fragments where the caller flushes (after every frame), the index up front and each fragment
+  // self-contained: every frame goes to the file as it comes, and the muxer keeps no index of
+  // the whole movie in memory until close.
   format->flags |= AVFMT_FLAG_FLUSH_PACKETS;
   AVDictionary* muxer_options = nullptr;
   av_dict_set(&muxer_options, "movflags", "frag_custom+empty_moov+default_base_moof", 0);
@@ -177,7 +204,7 @@ void MovieWriter::State::pad_rgb(const Framebuffer& image) {
 
 MovieWriter::MovieWriter(std::unique_ptr<State> state) : state_(std::move(state)) {}
 
-MovieWriter::~MovieWriter() { close(); }
+MovieWriter::~MovieWriter() = default;
 
 std::unique_ptr<MovieWriter> MovieWriter::create(const std::string& path, int width, int height,
                                                  const MovieOptions& options, std::string& error) {
@@ -196,6 +223,7 @@ std::unique_ptr<MovieWriter> MovieWriter::create(const std::string& path, int wi
 WriteResult MovieWriter::append(const Framebuffer& image) {
   State& s = *state_;
   if (s.closed) return {false, "movie '" + s.path + "': already closed"};
+  if (s.broken) return {false, "movie '" + s.path + "': abandoned after a frame failed"};
   if (image.width != s.width || image.height != s.height) {
     return {false, "movie '" + s.path + "': a " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " image in a " + std::to_string(s.width) +
@@ -212,23 +240,41 @@ WriteResult MovieWriter::append(const Framebuffer& image) {
   const int stride[] = {3 * s.codec->width};
   sws_scale(s.to_yuv, source, stride, 0, s.codec->height, s.frame->data, s.frame->linesize);
   s.frame->pts = s.frames;
-  if (WriteResult sent = s.encode(s.frame); !sent.ok) return sent;
-  ++s.frames;
-  if ((rc = av_write_frame(s.format, nullptr)) < 0) return s.failed("writing the fragment", rc);
-  return {};
+  WriteResult sent = s.encode(s.frame);
+  if (sent.ok && (rc = av_write_frame(s.format, nullptr)) < 0) {
+    sent = s.failed("writing the fragment", rc);
+  }
+  s.broken = !sent.ok;
+  if (sent.ok) ++s.frames;
+  return sent;
+}
+
+// The end of the file written and closed, then the file renamed to the movie's name.
+WriteResult MovieWriter::State::finish() {
+  WriteResult result = encode(nullptr);
+  if (const int rc = av_write_trailer(format); rc < 0 && result.ok) {
+    result = failed("writing the end of the file", rc);
+  }
+  if (const int rc = avio_closep(&format->pb); rc < 0 && result.ok) {
+    result = failed("closing", rc);
+  }
+  if (result.ok && ::rename(temporary.c_str(), path.c_str()) != 0) {
+    result = {false, "movie '" + path + "': cannot rename '" + temporary +
+                         "' to it: " + std::strerror(errno)};
+  }
+  if (result.ok) temporary.clear();
+  return result;
 }
 
 WriteResult MovieWriter::close() {
   State& s = *state_;
   if (s.closed) return {};
   s.closed = true;
-  WriteResult result = s.encode(nullptr);
-  if (const int rc = av_write_trailer(s.format); rc < 0 && result.ok) {
-    result = s.failed("writing the end of the file", rc);
-  }
-  if (const int rc = avio_closep(&s.format->pb); rc < 0 && result.ok) {
-    result = s.failed("closing", rc);
-  }
+  WriteResult result = s.broken ? WriteResult{false, "movie '" + s.path +
+                                                         "': not kept, a frame could not be "
+                                                         "written"}
+                                : s.finish();
+  if (!result.ok) s.discard();
   return result;
 }
 

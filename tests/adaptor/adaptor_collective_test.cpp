@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "plane_scene.hpp"
+#include "same_status.hpp"
 #include "shared_dir.hpp"
 #include "tetray/adaptor.hpp"
 
@@ -66,23 +67,9 @@ Status execute(Adaptor& a, const PlaneScene& scene, std::int64_t step,
   return a.execute(step, static_cast<double>(step), scene.view(), fields, changes, report);
 }
 
-// A status every rank must share: its code and message, as seen on rank 0, on every rank.
-void expect_same_on_every_rank(const Status& status) {
-  char text[1024] = {};
-  int code = static_cast<int>(status.code);
-  std::snprintf(text, sizeof text, "%s", status.message.c_str());
-  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  MPI_Bcast(text, sizeof text, MPI_CHAR, 0, MPI_COMM_WORLD);
-  EXPECT_EQ(static_cast<int>(status.code), code) << "rank " << rank();
-  EXPECT_EQ(status.message, std::string(text).substr(0, status.message.size()))
-      << "rank " << rank();
-}
-
 bool starts_with(const std::string& text, const std::string& prefix) {
   return text.rfind(prefix, 0) == 0;
 }
-
-std::string rank_prefix(int r) { return "rank " + std::to_string(r) + ": "; }
 
 fs::path image(const std::string& dir, const std::string& scene, int step) {
   char name[64];

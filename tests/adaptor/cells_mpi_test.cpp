@@ -8,14 +8,11 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-#include <algorithm>
-#include <cmath>
-#include <numeric>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "ball_image.h"
+#include "rank_cells.hpp"
 #include "shared_dir.hpp"
 #include "support/cell_meshes.hpp"
 #include "support/scratch_dir.hpp"
@@ -26,43 +23,6 @@ namespace {
 
 constexpr int kCubes = 12, kSide = 64;
 constexpr double kRadius = 0.6, kEye = 3, kFov = 40;
-
-// One rank's share of a cell mesh: its cells, over only the points they use, numbered locally.
-struct RankCells {
-  std::vector<double> xyz, distance;
-  std::vector<std::uint8_t> types;
-  std::vector<std::int64_t> offsets{0}, connectivity;
-};
-
-// The cells [first, last) of `mesh` (on [-1, 1]^3), their points in the order of `seed`'s
-// shuffle (seed 0: the mesh's own order).
-RankCells share(const CellMesh& mesh, std::size_t first, std::size_t last, unsigned seed) {
-  std::vector<std::int64_t> used;
-  for (auto c = first; c < last; ++c) {
-    used.insert(used.end(), mesh.connectivity.begin() + mesh.offsets[c],
-                mesh.connectivity.begin() + mesh.offsets[c + 1]);
-  }
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  if (seed != 0) std::shuffle(used.begin(), used.end(), std::mt19937(seed));
-  std::vector<std::int64_t> local(mesh.points.size(), -1);
-  RankCells out;
-  const std::vector<double> xyz = mesh.xyz(-1, 1);
-  for (std::size_t k = 0; k < used.size(); ++k) {
-    local[used[k]] = static_cast<std::int64_t>(k);
-    const double* p = &xyz[3 * used[k]];
-    out.xyz.insert(out.xyz.end(), p, p + 3);
-    out.distance.push_back(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
-  }
-  for (auto c = first; c < last; ++c) {
-    out.types.push_back(mesh.types[c]);
-    for (auto v = mesh.offsets[c]; v < mesh.offsets[c + 1]; ++v) {
-      out.connectivity.push_back(local[mesh.connectivity[v]]);
-    }
-    out.offsets.push_back(static_cast<std::int64_t>(out.connectivity.size()));
-  }
-  return out;
-}
 
 std::string config(const std::string& directory) {
   return "output: {directory: " + directory + ", formats: [png], quiet: true}\n" +
@@ -80,12 +40,7 @@ void render(MPI_Comm comm, const std::string& directory, const RankCells& cells)
   Status status;
   auto adaptor = Adaptor::create_from_yaml(comm, config(directory), status);
   ASSERT_TRUE(adaptor) << status.message;
-  MeshView mesh;
-  mesh.points = PointsView::of(std::span<const double>(cells.xyz));
-  mesh.cells = {cells.types.data(), cells.offsets.data(), cells.connectivity.data(),
-                IndexType::int64, cells.types.size()};
-  const FieldView fields[] = {FieldView::of("distance", std::span<const double>(cells.distance))};
-  status = adaptor->execute(0, 0, mesh, fields);
+  status = adaptor->execute(0, 0, cells.view(), cells.fields());
   ASSERT_TRUE(status.ok()) << status.message;
   ASSERT_TRUE(adaptor->finalize().ok());
 }

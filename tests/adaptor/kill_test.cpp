@@ -13,16 +13,12 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -31,8 +27,7 @@
 
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
-
-extern char** environ;
+#include "writer_process.hpp"
 
 namespace tetray::testing {
 namespace {
@@ -43,28 +38,6 @@ constexpr int kKills = 6;
 constexpr int kFreezesPerRun = 25;
 constexpr int kStepsPerRun = 20;  // between runs' first steps: a run gets through more than this
 constexpr int kWidth = 64, kHeight = 48;  // plane_config's image
-
-// Starts the writer; returns its pid once it has written its start byte (-1 if it died first).
-pid_t start_writer(const fs::path& dir, long long first_step, long long steps) {
-  int pipe_fds[2];
-  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return -1;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-  const std::string dir_arg = dir.string(), first = std::to_string(first_step),
-                    count = std::to_string(steps);
-  char* argv[] = {const_cast<char*>(TETRAY_KILLED_WRITER), const_cast<char*>(dir_arg.c_str()),
-                  const_cast<char*>(first.c_str()), const_cast<char*>(count.c_str()), nullptr};
-  pid_t pid = -1;
-  const int spawned = posix_spawn(&pid, TETRAY_KILLED_WRITER, &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(pipe_fds[1]);
-  char started = 0;
-  const bool ready = spawned == 0 && ::read(pipe_fds[0], &started, 1) == 1;
-  ::close(pipe_fds[0]);
-  if (spawned == 0 && !ready) ::waitpid(pid, nullptr, 0);
-  return ready ? pid : -1;
-}
 
 // Every byte of the file; nullopt when it does not exist.
 std::optional<std::string> contents(const fs::path& path) {
@@ -189,19 +162,9 @@ class TornFileCheck {
   std::map<std::string, FileVersion> whole_;
 };
 
-// Stops the writer (every thread: waitpid reports the stop once the whole group is stopped).
-bool freeze(pid_t writer) {
-  int status = 0;
-  return ::kill(writer, SIGSTOP) == 0 && ::waitpid(writer, &status, WUNTRACED) == writer &&
-         WIFSTOPPED(status);
-}
-
 TEST(KilledRun, LeavesOnlyWholeImagesAndWholeLines) {
   ::alarm(120);  // a writer that hangs before its start byte ends the test instead of blocking it
-  // The writer starts MPI, whose own allocations LeakSanitizer would report when it exits
-  // (tests/support/lsan_options.cpp); the last option given wins.
-  const char* asan = std::getenv("ASAN_OPTIONS");
-  ::setenv("ASAN_OPTIONS", (std::string(asan ? asan : "") + ":detect_leaks=0").c_str(), 1);
+  without_leak_check_in_writers();
   const ScratchDir dir;
   const fs::path log = dir.path() / "tetray_log.csv";
   TornFileCheck check(dir.path());
@@ -220,11 +183,7 @@ TEST(KilledRun, LeavesOnlyWholeImagesAndWholeLines) {
       if (::testing::Test::HasFailure()) break;
     }
     std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
-    ASSERT_EQ(::kill(writer, SIGKILL), 0);
-    int status = 0;
-    ASSERT_EQ(::waitpid(writer, &status, 0), writer);
-    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
-        << "the writer ended on its own (status " << status << ") before it was killed";
+    ASSERT_TRUE(kill_writer(writer)) << "the writer ended on its own before it was killed";
     const std::size_t lines_after = check.expect_nothing_torn();
     EXPECT_GT(lines_after, lines) << "run " << run << " wrote no log row before its kill";
     lines = lines_after;
@@ -233,9 +192,7 @@ TEST(KilledRun, LeavesOnlyWholeImagesAndWholeLines) {
 
   const pid_t last = start_writer(dir.path(), 0, 3);
   ASSERT_GT(last, 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(last, &status, 0), last);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  ASSERT_EQ(wait_writer(last), 0);
   check.expect_nothing_torn();
   for (const auto& entry : fs::recursive_directory_iterator(dir.path())) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)

@@ -1,0 +1,28 @@
+// One rank's share of a cell mesh (tests/support/cell_meshes.hpp) as a solver holds it: its
+// cells over only the points they use, numbered locally in a shuffled order, with the distance
+// to the centre as the point field "distance" (the ball of tests/support/ball_image.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "support/cell_meshes.hpp"
+#include "tetray/adaptor.hpp"
+
+namespace tetray::testing {
+
+struct RankCells {
+  std::vector<double> xyz, distance;
+  std::vector<std::uint8_t> types;
+  std::vector<std::int64_t> offsets{0}, connectivity;
+
+  MeshView view() const;  // as CellsView with int64 offsets and connectivity
+  std::vector<FieldView> fields() const;
+};
+
+// The cells [first, last) of `mesh`, mapped onto [-1, 1]^3, their points in the order of
+// `seed`'s shuffle (seed 0: the mesh's own order).
+RankCells share(const CellMesh& mesh, std::size_t first, std::size_t last, unsigned seed);
+
+}  // namespace tetray::testing
