@@ -2,7 +2,8 @@
 // across ranks"; the protocol's own test is tests/render/parallel/shared_gradients_mpi_test.cpp):
 // the gyroid-twist scene, smooth, transparent, clipped and shadowed, rendered by all ranks gives
 // the PNG and EXR of rank 0 alone, at the first step and at a second one that moves the points
-// and changes the field.
+// and changes the field; and a vertex whose gradient needs its tet count over all ranks
+// (support/count_star.hpp) is shaded as one rank shades it.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -14,6 +15,7 @@
 #include "scenes/box_mesh.hpp"
 #include "shared_dir.hpp"
 #include "slab_partition.hpp"
+#include "support/count_star.hpp"
 #include "support/png_read.hpp"
 #include "tetray/adaptor.hpp"
 
@@ -128,6 +130,48 @@ TEST(SmoothAcrossRanks, ANewStepKeepsTheImageOfOneRank) {
       << "on " << world_size() << " ranks";
   EXPECT_TRUE(bytes(one + "/smooth/smooth_000000.png") != bytes(one + file + "png"))
       << "step 1 must show the new step";
+}
+
+// The view tet of the count star seen from +x, its isosurface 0.25 a quad whose normals near
+// vertex 0 follow that vertex's gradient: (0, -1, 0) / S on the grid of its nine tets, 45 degrees
+// away from (1, -1, 0) / S, which a rank rounding on its own three tets' grid would use.
+std::string star_config(const std::string& directory) {
+  return "output: {directory: " + directory +
+         ", formats: [png], quiet: true}\n"
+         "scenes:\n"
+         "  - name: star\n"
+         "    field: f\n"
+         "    isovalues: [0.25]\n"
+         "    shading: smooth\n"
+         "    camera: {eye: [3, -0.3, -0.3], look_at: [0.25, -0.3, -0.3], up: [0, 1, 0], "
+         "fov_deg: 40}\n"
+         "    image: {width: 64, height: 64}\n";
+}
+
+void render_star(MPI_Comm comm, const std::string& directory,
+                 const std::vector<std::int64_t>& tets) {
+  const CountStar star = count_star();
+  const MeshView mesh{PointsView::of(std::span<const double>(star.points)),
+                      TetsView::of(std::span<const std::int64_t>(tets))};
+  const FieldView fields[] = {FieldView::of("f", std::span<const double>(star.field))};
+  render_step_zero(comm, star_config(directory), mesh, fields);
+}
+
+TEST(SmoothAcrossRanks, AVertexSharedByRanksIsShadedOnTheGridOfAllItsTets) {
+  const SharedDir shared("smooth_count_star");
+  const std::string one = shared.path() + "/one", split = shared.path() + "/split";
+  const CountStar star = count_star();
+  if (rank() == 0) render_star(MPI_COMM_SELF, one, star.tets);
+  render_star(MPI_COMM_WORLD, split, star.tets_of(rank(), world_size()));
+  if (rank() != 0) return;
+  const std::string file = "/star/star_000000.png";
+  const PngPixels whole = read_png_rgba8(one + file);
+  const PngPixels parts = read_png_rgba8(split + file);
+  ASSERT_TRUE(whole.error.empty() && parts.error.empty()) << whole.error << parts.error;
+  std::size_t drawn = 0;
+  for (std::size_t p = 3; p < whole.rgba.size(); p += 4) drawn += whole.rgba[p] > 0;
+  EXPECT_GT(drawn, whole.rgba.size() / 4 / 20) << "the star must show";
+  EXPECT_EQ(differing_pixels(whole, parts), 0u) << "on " << world_size() << " ranks";
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // Smooth shading's vertex gradients on a split mesh (docs/architecture.md, "Smooth shading
 // across ranks"): the per-vertex gradients of the tets split into slabs, each rank's exact
 // partial sums combined by the real protocol (render/parallel/shared_gradients.hpp) over the
-// ranks that share a vertex, are bit for bit those of one rank holding every tet.
+// ranks that share a vertex, are bit for bit those of one rank holding every tet; and a vertex
+// whose gradient needs its tet count over all ranks (the counts exchanged) gets it.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -12,6 +13,7 @@
 #include "render/update/vertex_gradients.hpp"
 #include "render/update/volume_update.hpp"
 #include "scenes/box_mesh.hpp"
+#include "support/count_star.hpp"
 #include "support/mesh_slabs.hpp"
 #include "support/mpi_world.hpp"
 
@@ -30,15 +32,29 @@ struct Loaded {
   render::Bvh bvh;
 };
 
-// The volume of `tets` with every rank's origin, gradients left to the caller.
-void load(const std::vector<std::int64_t>& tets, Loaded& out) {
-  const std::vector<double>& p = scene().mesh.points;
-  const render::PointSource points{p.data(), render::ScalarKind::f64, nullptr,
-                                   render::ScalarKind::f64, p.size() / 3};
-  const render::FieldSource field{scene().field.data(), render::ScalarKind::f64,
-                                  scene().field.size()};
+// The volume of `tets` over `points` and `field` with every rank's origin, gradients left to the
+// caller.
+void load(const std::vector<double>& points, const std::vector<double>& field,
+          const std::vector<std::int64_t>& tets, Loaded& out) {
+  const render::PointSource source{points.data(), render::ScalarKind::f64, nullptr,
+                                   render::ScalarKind::f64, points.size() / 3};
+  const render::FieldSource values{field.data(), render::ScalarKind::f64, field.size()};
   const render::Vec3d origin{0, 0, 0};
-  render::load_volume(out.volume, out.bvh, tets, {}, {}, points, field, {}, &origin);
+  render::load_volume(out.volume, out.bvh, tets, {}, {}, source, values, {}, &origin);
+}
+
+void load(const std::vector<std::int64_t>& tets, Loaded& out) {
+  load(scene().mesh.points, scene().field, tets, out);
+}
+
+// The shared vertices of `slab` over `points`, matched and their gradients computed by the
+// protocol; a failure fails the test.
+void compute_shared(const std::vector<double>& points, Loaded& slab) {
+  render::SharedGradients shared;
+  const render::PointSource source{points.data(), render::ScalarKind::f64, nullptr,
+                                   render::ScalarKind::f64, points.size() / 3};
+  ASSERT_EQ(shared.match(slab.volume, source, MPI_COMM_WORLD).message, "");
+  ASSERT_EQ(shared.compute(slab.volume).message, "");
 }
 
 // Points of `slab` whose gradient differs (in any bit) from the whole mesh's.
@@ -65,14 +81,27 @@ TEST(SmoothAcrossRanks, VertexGradientsAreThoseOfOneRankBitForBit) {
   if (world().size > 1) {
     EXPECT_GT(alone, 0u) << "the slabs must share vertices";
   }
-  render::SharedGradients shared;
-  const std::vector<double>& p = scene().mesh.points;
-  const render::PointSource points{p.data(), render::ScalarKind::f64, nullptr,
-                                   render::ScalarKind::f64, p.size() / 3};
-  ASSERT_EQ(shared.match(slab.volume, points, MPI_COMM_WORLD).message, "");
-  ASSERT_EQ(shared.compute(slab.volume).message, "");
+  compute_shared(scene().mesh.points, slab);
   EXPECT_EQ(differing_gradients(whole, slab), 0u)
       << "on rank " << world().rank << " of " << world().size << " (" << alone << " alone)";
+}
+
+// The grid a shared vertex's terms are rounded to is that of its tets on all ranks
+// (support/count_star.hpp): vertex 0's nine tets split three (rank 0) to six (the others) give
+// the gradient of one rank holding all nine, (0, -1, 0) / S, not the (1, -1, 0) / S of rank 0's
+// three tets' finer grid.
+TEST(SmoothAcrossRanks, ASharedVertexIsRoundedOnTheGridOfAllItsTets) {
+  const CountStar star = count_star();
+  Loaded whole, part;
+  load(star.points, star.field, star.tets, whole);
+  render::compute_vertex_gradients(whole.volume);
+  const render::Vec3f at_origin = whole.volume.gradients[whole.volume.point_vertex[0]];
+  EXPECT_EQ(at_origin.x, 0.0f);
+  EXPECT_FLOAT_EQ(at_origin.y, -1 / (4 + 27 / 256.0f));
+  load(star.points, star.field, star.tets_of(world().rank, world().size), part);
+  compute_shared(star.points, part);
+  EXPECT_EQ(differing_gradients(whole, part), 0u)
+      << "on rank " << world().rank << " of " << world().size;
 }
 
 }  // namespace
