@@ -7,7 +7,6 @@
 // its arrays and that has no cells is a rank without cells: as a piece of a .pvtu beside a valid
 // one, it must be read, adding nothing.
 #include <fuzzer/FuzzedDataProvider.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstdlib>
@@ -16,34 +15,13 @@
 #include <limits>
 #include <string>
 
-#include "tools/vtk_io/vtk_files.hpp"
+#include "fuzz_vtk_files.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// The private directory, with a valid one-tet piece.vtu; removed at exit.
-struct FuzzDirectory {
-  fs::path path = fs::temp_directory_path() / ("tetray_fuzz_counts_" + std::to_string(::getpid()));
-  FuzzDirectory() {
-    fs::create_directories(path);
-    tetray::vtkio::TetGrid piece;
-    piece.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-    piece.tets = {0, 1, 2, 3};
-    piece.point_fields["f"] = {0, 1, 2, 3};
-    std::string error;
-    if (!tetray::vtkio::write_vtu((path / "piece.vtu").string(), piece, error)) std::abort();
-  }
-  ~FuzzDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-const fs::path& fuzz_directory() {
-  static const FuzzDirectory directory;
-  return directory.path;
-}
+using tetray::fuzz::check_grid;
+using tetray::fuzz::fuzz_directory;
 
 // A count as a file might declare it: mostly the values at the edges, else any 64-bit integer.
 std::int64_t declared_count(FuzzedDataProvider& input, std::int64_t actual) {
@@ -111,17 +89,6 @@ std::string vtu_text(FuzzedDataProvider& input, std::int64_t points, std::int64_
          repeated("10 ", cells) + "</DataArray></Cells>\n</Piece></UnstructuredGrid></VTKFile>\n";
 }
 
-void check_grid(const tetray::vtkio::TetGrid& grid) {
-  const std::size_t points = grid.points.size() / 3;
-  if (grid.points.size() % 3 != 0 || grid.tets.size() % 4 != 0) std::abort();
-  for (const std::int64_t v : grid.tets) {
-    if (v < 0 || static_cast<std::size_t>(v) >= points) std::abort();
-  }
-  for (const auto& [name, values] : grid.point_fields) {
-    if (values.size() != points) std::abort();
-  }
-}
-
 // A rank without cells: its piece beside a valid one adds nothing.
 void check_empty_piece_is_read(const fs::path& piece) {
   const fs::path summary = fuzz_directory() / "pieces.pvtu";
@@ -152,13 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const fs::path path = fuzz_directory() / "input.vtu";
   std::ofstream(path, std::ios::trunc) << vtu_text(input, points, cells, declared);
 
-  tetray::vtkio::TetGrid grid;
-  std::string error;
-  if (tetray::vtkio::read_grid(path.string(), grid, error)) {
-    check_grid(grid);
-  } else if (error.empty()) {
-    std::abort();
-  }
+  tetray::fuzz::read_one(path.string());
   const bool truthful = declared.points == points && declared.cells == cells &&
                         declared.components == 3 && declared.tuples == points;
   if (truthful && cells == 0) check_empty_piece_is_read(path);

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "plane_scene.hpp"
+#include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
@@ -198,16 +199,7 @@ TEST(Replay, AnEmptyPieceAddsNothingAndAnAllEmptyFileSaysSo) {
   empty.point_fields["f"];
   ASSERT_TRUE(vtkio::write_vtu(dir / "empty.vtu", empty, error)) << error;
   const auto write_pvtu = [&](const std::string& name, const std::string& first) {
-    std::ofstream(dir / name) << R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPointData><PDataArray type="Float64" Name="f"/></PPointData>
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source=")" << first << R"("/>
-    <Piece Source="empty.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)";
+    std::ofstream(dir / name) << pvtu_summary({first, "empty.vtu"}, {"f"});
   };
   write_pvtu("half.pvtu", "plane.vtu");
   write_pvtu("none.pvtu", "empty.vtu");

@@ -16,6 +16,7 @@
 #include <iterator>
 
 #include "scenes/box_mesh.hpp"
+#include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
@@ -72,20 +73,8 @@ TEST(VtkGrid, ReadsPiecesOfAParallelFile) {
   std::string error;
   ASSERT_TRUE(write_vtu(dir / "part_0.vtu", a, error)) << error;
   ASSERT_TRUE(write_vtu(dir / "part_1.vtu", b, error)) << error;
-  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPointData>
-      <PDataArray type="Float64" Name="gyroid"/>
-      <PDataArray type="Float64" Name="height"/>
-    </PPointData>
-    <PCellData><PDataArray type="UInt8" Name="vtkGhostType"/></PCellData>
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="part_0.vtu"/>
-    <Piece Source="part_1.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "whole.pvtu",
+             testing::pvtu_summary({"part_0.vtu", "part_1.vtu"}, {"gyroid", "height"}, true));
   TetGrid read;
   ASSERT_TRUE(read_grid(dir / "whole.pvtu", read, error)) << error;
 
@@ -157,15 +146,7 @@ TEST(VtkGrid, AFileWhoseEveryPieceIsEmptySaysSo) {
   ScratchDir dir;
   std::string error;
   ASSERT_TRUE(write_vtu(dir / "empty.vtu", TetGrid{}, error)) << error;
-  write_text(dir / "empty.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="empty.vtu"/>
-    <Piece Source="empty.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "empty.pvtu", testing::pvtu_summary({"empty.vtu", "empty.vtu"}));
   TetGrid read;
   EXPECT_FALSE(read_grid(dir / "empty.pvtu", read, error));
   EXPECT_TRUE(contains(error, "empty.pvtu': every piece is empty (no cells)")) << error;
@@ -287,14 +268,7 @@ TEST(VtkGrid, UnreadableFilesGiveErrorsAndNoVtkNoise) {
   ScratchDir dir;
   write_text(dir / "garbage.vtu", "this is not XML at all");
   write_text(dir / "truncated.vtu", "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"");
-  write_text(dir / "missing_piece.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="nowhere.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "missing_piece.pvtu", testing::pvtu_summary({"nowhere.vtu"}));
   const std::pair<std::string, std::string> cases[] = {
       {dir / "absent.vtu", "no such file"},
       {dir / "grid.vtk", "unsupported file type"},

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/xml_header.hpp"
@@ -158,14 +159,7 @@ TEST(VtkMalformed, DeeplyNestedFilesAreRefusedBeforeVtkReadsThem) {
 
   write_text(dir / "deep_piece.vtu",
              deeply_nested("<VTKFile type=\"UnstructuredGrid\">", "</VTKFile>\n", depth));
-  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="deep_piece.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "whole.pvtu", testing::pvtu_summary({"deep_piece.vtu"}));
   const std::string piece_error = read_error(dir / "whole.pvtu");
   EXPECT_TRUE(contains(piece_error, "deep_piece.vtu")) << piece_error;
   EXPECT_TRUE(contains(piece_error, "nest deeper than")) << piece_error;
@@ -218,15 +212,7 @@ TEST(VtkMalformed, ASummaryThatMisdescribesItsPiecesReadsThePieces) {
 TEST(VtkMalformed, ASummaryNamingAnArrayAPieceLacksIsAnError) {
   ScratchDir dir;
   write_text(dir / "piece.vtu", vtu_text("0 1 2 3", "4", "10", 1));
-  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="1.0">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPointData><PDataArray type="Float64" Name="g"/></PPointData>
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="piece.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "whole.pvtu", testing::pvtu_summary({"piece.vtu"}, {"g"}));
   const std::string error = read_error(dir / "whole.pvtu");
   EXPECT_TRUE(contains(error, "piece.vtu': has no scalar point array 'g'")) << error;
   write_text(dir / "empty.pvtu", "<VTKFile><PUnstructuredGrid/></VTKFile>");
@@ -341,14 +327,7 @@ TEST(VtkMalformed, ANegativeCountInAPieceNamesThePiece) {
   std::string text = vtu_text("0 1 2 3", "4", "10", 1);
   text.replace(text.find("NumberOfCells=\"1\""), 17, "NumberOfCells=\"-1\"");
   write_text(dir / "piece.vtu", text);
-  write_text(dir / "whole.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="0.1">
-  <PUnstructuredGrid GhostLevel="0">
-    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>
-    <Piece Source="piece.vtu"/>
-  </PUnstructuredGrid>
-</VTKFile>
-)");
+  write_text(dir / "whole.pvtu", testing::pvtu_summary({"piece.vtu"}));
   const std::string error = read_error(dir / "whole.pvtu");
   EXPECT_TRUE(contains(error, "piece.vtu': <Piece> declares NumberOfCells=\"-1\", a negative"))
       << error;
