@@ -1,7 +1,7 @@
 #include "adaptor/output/image_writer.hpp"
 
+#include "adaptor/output/line_file.hpp"
 #include "adaptor/step/thread_budget.hpp"
-#include "render/core/stopwatch.hpp"
 
 namespace tetray {
 
@@ -28,18 +28,38 @@ ImageWriter::~ImageWriter() {
   thread_.join();
 }
 
-void ImageWriter::submit(ImageJob job) {
-  if (output_.queue_depth == 0) {
-    write(job);
-    return;
-  }
-  const render::Stopwatch waiting;
+void ImageWriter::wait_for_room() {
+  if (output_.queue_depth == 0) return;
   std::unique_lock lock(mutex_);
   changed_.wait(lock,
-                [&] { return queue_.size() < static_cast<std::size_t>(output_.queue_depth); });
-  job.record.queue_wait_ms = waiting.ms();
-  queue_.push_back(std::move(job));
-  lock.unlock();
+                [&] { return queued_images_ < static_cast<std::size_t>(output_.queue_depth); });
+}
+
+void ImageWriter::submit(ImageJob job) {
+  Task task(std::move(job));
+  if (output_.queue_depth == 0) {
+    perform(task);
+    return;
+  }
+  wait_for_room();
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(task));
+    ++queued_images_;
+  }
+  changed_.notify_all();
+}
+
+void ImageWriter::log_rows(std::vector<StepRecord> rows) {
+  Task task(std::move(rows));
+  if (output_.queue_depth == 0) {
+    perform(task);
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(task));
+  }
   changed_.notify_all();
 }
 
@@ -73,12 +93,13 @@ void ImageWriter::run() {
   for (;;) {
     changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
     if (queue_.empty()) return;
-    ImageJob job = std::move(queue_.front());
+    Task task = std::move(queue_.front());
     queue_.pop_front();
+    if (std::holds_alternative<ImageJob>(task)) --queued_images_;
     busy_ = true;
     lock.unlock();
     changed_.notify_all();
-    write(job);
+    perform(task);
     lock.lock();
     busy_ = false;
     changed_.notify_all();
@@ -105,17 +126,48 @@ std::string ImageWriter::append_to_movie(const ImageJob& job) {
   return appended.message;
 }
 
+void ImageWriter::perform(Task& task) {
+  if (ImageJob* job = std::get_if<ImageJob>(&task)) {
+    write(*job);
+  } else {
+    append_log_rows(std::get<std::vector<StepRecord>>(task));
+  }
+}
+
 void ImageWriter::write(ImageJob& job) {
   std::string error;
+  bool written = false;
   try {
     arena_.execute([&] {
       error = write_image_job(output_, job);
-      if (error.empty() && output_.mp4) error = append_to_movie(job);
+      written = error.empty();
+      if (written && output_.mp4) error = append_to_movie(job);
     });
   } catch (const std::exception& e) {
     error = "writing step " + std::to_string(job.record.step) + " of scene " + job.record.scene +
             ": " + e.what();
   }
+  written_.push_back(written ? std::optional<StepRecord>(job.record) : std::nullopt);
+  if (!error.empty()) keep_error(std::move(error));
+}
+
+// Row k belongs to the k-th image written since the last rows; it takes the figures of the
+// writer's own work on that image. The first failed append ends the step's rows.
+void ImageWriter::append_log_rows(std::vector<StepRecord>& rows) {
+  std::string error;
+  try {
+    for (std::size_t k = 0; k < rows.size() && k < written_.size() && error.empty(); ++k) {
+      if (!written_[k]) continue;
+      StepRecord& row = rows[k];
+      row.hits = written_[k]->hits;
+      row.encode_ms = written_[k]->encode_ms;
+      row.write_ms = written_[k]->write_ms;
+      error = append_line(log_path(output_.directory), log_row(row));
+    }
+  } catch (const std::exception& e) {
+    error = std::string("appending to the log: ") + e.what();
+  }
+  written_.clear();
   if (!error.empty()) keep_error(std::move(error));
 }
 

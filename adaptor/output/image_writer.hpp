@@ -3,6 +3,10 @@
 // full, submit waits (an image is never dropped); a failure is kept and handed to the caller
 // at its next call. Queue depth 0 writes in the calling thread (for comparison benchmarks).
 //
+// The log rows of a step come after its images, once execute knows its whole blocked time: the
+// writer appends each row when the rows arrive, with the figures it measured writing that row's
+// image (hits, encode_ms, write_ms). They queue behind the step's images without taking room.
+//
 // The writer's parallel work (the EXR and PNG of an image at once, their row loops) runs in its
 // own arena of `output.writer_threads` threads, sized from the rank's budget (writer_thread_share
 // in adaptor/step/thread_budget.hpp), at low priority: oneTBB's workers go to the renderer's arena
@@ -19,8 +23,11 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
+#include <variant>
+#include <vector>
 
 #include "adaptor/config/config.hpp"
 #include "adaptor/output/output_files.hpp"
@@ -41,8 +48,15 @@ class ImageWriter {
   ImageWriter(const ImageWriter&) = delete;
   ImageWriter& operator=(const ImageWriter&) = delete;
 
-  // Queues the job (or writes it, at depth 0). Records in the job how long it waited.
+  // Returns once the queue has room for one more image (at once at depth 0), so that the caller
+  // can time its wait apart from the rest of its hand-off. Only the writer thread takes from the
+  // queue, so the room is still there at the caller's next submit.
+  void wait_for_room();
+  // Queues the job (or writes it, at depth 0), waiting for room first when there is none.
   void submit(ImageJob job);
+  // The log rows of the images submitted since the last call, one per image in the same order
+  // (or fewer: the images left over get no row). Never waits; an image that failed gets no row.
+  void log_rows(std::vector<StepRecord> rows);
   // Returns when every submitted job is written.
   void drain();
   // Drains, then closes the movies (their errors become take_error's). Later jobs start new ones.
@@ -53,8 +67,13 @@ class ImageWriter {
   std::string take_error();
 
  private:
+  // An image to write, or the log rows of the images queued before it.
+  using Task = std::variant<ImageJob, std::vector<StepRecord>>;
+
   void run();
+  void perform(Task& task);
   void write(ImageJob& job);
+  void append_log_rows(std::vector<StepRecord>& rows);
   std::string append_to_movie(const ImageJob& job);
   void keep_error(std::string error);
 
@@ -65,7 +84,11 @@ class ImageWriter {
   std::map<std::string, std::unique_ptr<render::MovieWriter>> movies_;
   std::mutex mutex_;
   std::condition_variable changed_;
-  std::deque<ImageJob> queue_;
+  std::deque<Task> queue_;
+  std::size_t queued_images_ = 0;  // the images in queue_, which writer_queue_depth bounds
+  // The records of the images written since the last log rows, as written; none for an image
+  // that failed. Touched by whichever thread writes, as movies_ is.
+  std::deque<std::optional<StepRecord>> written_;
   bool busy_ = false;
   bool stopping_ = false;
   std::string error_;

@@ -306,7 +306,6 @@ std::string write_image_job(const config::Output& output, ImageJob& job) {
     if (auto e = write_cinema_script(output.directory, r.scene); !e.empty()) return e;
   }
   r.write_ms += appending.ms();
-  if (auto e = append_line(log_path(output.directory), log_row(r)); !e.empty()) return e;
   if (job.viewer_page_scenes.empty()) return {};
   return write_viewer_page(output.directory, job.viewer_page_scenes);
 }

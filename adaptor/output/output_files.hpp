@@ -62,9 +62,10 @@ struct ImageJob {
   std::vector<std::string> viewer_page_scenes;
 };
 
-// Background, annotations, image files, Cinema row, log row; fills the record's writer timings and
-// hits. A step whose image is already on disk (rendered again) replaces its Cinema row instead of
-// adding a second one.
+// Background, annotations, image files, Cinema row; fills the record's writer timings and hits
+// for its log row (which the writer appends once the step's execute has returned,
+// image_writer.hpp). A step whose image is already on disk (rendered again) replaces its Cinema
+// row instead of adding a second one.
 std::string write_image_job(const config::Output& output, ImageJob& job);
 
 }  // namespace tetray

@@ -6,7 +6,6 @@
 #include "adaptor/step/step_runner.hpp"
 #include "render/composite/composite.hpp"
 #include "render/composite/fragment_composite.hpp"
-#include "render/core/stopwatch.hpp"
 #include "render/parallel/scene_layers.hpp"
 #include "render/parallel/scene_shadows.hpp"
 #include "render/parallel/step_reductions.hpp"
@@ -33,9 +32,12 @@ Status Adaptor::Impl::composite_and_submit() {
                volume.volume().bytes() + volume.bvh().bytes()};
   }
   const int writer = config_.output.writer_rank;
-  const int reduced = render::sum_counters_to_root(sums, writer, comm_.comm);
-  if (reduced != MPI_SUCCESS || render::max_to_root(rss, writer, comm_.comm) != MPI_SUCCESS) {
-    return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
+  {
+    const PhaseClock::Phase phase(clock_, step_costs_.agree_ms);
+    const int reduced = render::sum_counters_to_root(sums, writer, comm_.comm);
+    if (reduced != MPI_SUCCESS || render::max_to_root(rss, writer, comm_.comm) != MPI_SUCCESS) {
+      return {StatusCode::mpi_error, "reducing the log counters: " + mpi_error_text(reduced)};
+    }
   }
   Status local_failure = Status::success();
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
@@ -55,26 +57,28 @@ Status Adaptor::Impl::composite_and_submit() {
 Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t k, std::size_t v,
                                                 const SceneCounters& sums, std::uint64_t rss,
                                                 Status& local_failure) {
+  if (Status st = composite_view(s, k, v, local_failure); !st.ok()) return st;
+  if (!is_writer()) return Status::success();
   StepRecord r = s.record;
-  r.trace_ms = s.trace_ms[v];
+  r.trace_ms = s.view_times[v].trace_ms;
+  r.composite_ms = s.view_times[v].composite_ms;
   if (v > 0) {
     r.check_ms = r.ingest_ms = r.bvh_ms = r.color_ms = 0;
     r.bvh_update = "none";
   }
-  if (Status st = composite_view(s, k, v, r, local_failure); !st.ok()) return st;
-  if (is_writer()) submit_view(s, v, std::move(r), sums, rss);
+  submit_view(s, k, v, std::move(r), sums, rss);
   return Status::success();
 }
 
 // Collective. An MPI error is returned; a failure of this rank alone in the shadows goes to
 // `local_failure`, since the other scenes' collectives still need this rank.
-Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
+Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v,
                                      Status& local_failure) {
   render::Framebuffer& image = s.images[v];
   const int writer = config_.output.writer_rank;
-  if (!s.layers.empty()) return composite_layered_view(s, k, v, r, local_failure);
+  if (!s.layers.empty()) return composite_layered_view(s, k, v, local_failure);
   if (comm_.size > 1) {
-    const render::Stopwatch watch;
+    const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
     const int rc = s.config.volume
                        ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
                        : render::composite(image, comm_.comm, {.root = writer});
@@ -82,10 +86,9 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
       return {StatusCode::mpi_error,
               "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};
     }
-    r.composite_ms = watch.ms();
   }
   if (s.config.volume || s.config.shading.lights.shadow_count() == 0) return Status::success();
-  const render::Stopwatch watch;
+  const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
@@ -95,14 +98,13 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
       to_status(render::shadow_across_ranks(image, s.shadow_terms[v], scene, writer, comm_.comm));
   if (st.code == StatusCode::mpi_error) return st;
   if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
-  r.composite_ms += watch.ms();
   return Status::success();
 }
 
 // A transparent scene's view: its layers composited onto the writer rank, with their shadows.
 Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::size_t v,
-                                             StepRecord& r, Status& local_failure) {
-  const render::Stopwatch watch;
+                                             Status& local_failure) {
+  const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
   const FieldVolume& volume = volumes_[s.volume];
   const render::Camera camera = view_camera(s, k, v);
   const render::TraceOptions options = trace_options(s);
@@ -114,7 +116,6 @@ Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::
     return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
   }
   if (!st.ok() && local_failure.ok()) local_failure = std::move(st);
-  r.composite_ms = watch.ms();
   return Status::success();
 }
 

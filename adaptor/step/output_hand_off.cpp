@@ -12,8 +12,9 @@ namespace tetray {
 // Before compositing, which leaves only the writer rank's image defined. Of an orbit, the first
 // view.
 Status Adaptor::Impl::write_rank_images() {
-  for (const SceneState& s : scenes_) {
+  for (SceneState& s : scenes_) {
     if (!s.due) continue;
+    const PhaseClock::Phase phase(clock_, s.view_times[0].hand_off_ms);
     std::string error =
         write_rank_image(config_.output, s.config.name, s.record.step, comm_.rank, s.images[0]);
     if (!error.empty()) return {StatusCode::io_error, std::move(error)};
@@ -21,9 +22,12 @@ Status Adaptor::Impl::write_rank_images() {
   return Status::success();
 }
 
-// On the writer rank: the view's image and log row to the writer thread.
-void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
+// On the writer rank: the view's image to the writer thread, and its log row kept for the end of
+// the call (log_step). The wait for room in the queue is timed apart from the rest.
+void Adaptor::Impl::submit_view(SceneState& s, std::size_t k, std::size_t v, StepRecord r,
                                 const SceneCounters& sums, std::uint64_t rss) {
+  ViewTimes& times = s.view_times[v];
+  const PhaseClock::Phase handing(clock_, times.hand_off_ms);
   render::Framebuffer& image = s.images[v];
   r.tets = sums.tets;
   r.kept_tets = sums.kept_tets;
@@ -47,7 +51,12 @@ void Adaptor::Impl::submit_view(SceneState& s, std::size_t v, StepRecord r,
     job.phi = s.views[v].phi_deg;
     job.theta = s.views[v].theta_deg;
   }
+  {
+    const PhaseClock::Phase waiting(clock_, times.queue_wait_ms);
+    writer_->wait_for_room();
+  }
   writer_->submit(std::move(job));
+  handed_over_.push_back({k, v, std::move(r)});
 }
 
 // What the scene colored through a colormap this step, for its colorbars: the surfaces' color

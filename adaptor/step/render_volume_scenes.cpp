@@ -3,7 +3,6 @@
 // rank's tets, kept as fragments for the compositor and resolved for a per-rank image.
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/step/step_runner.hpp"
-#include "render/core/stopwatch.hpp"
 #include "render/walk/volume_render.hpp"
 
 namespace tetray {
@@ -11,30 +10,31 @@ namespace tetray {
 void Adaptor::Impl::render_volume_scene(SceneState& s, std::size_t k,
                                         std::span<const FieldView> fields) {
   FieldVolume& volume = volumes_[s.volume];
-  const render::Stopwatch watch;
-  render::VolumeRenderOptions options = volume_options(*s.config.volume, ranges_.scenes[k].color);
-  s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
-  options.surfaces = s.config.surfaces;
-  options.ambient = s.config.ambient;
-  if (!surface_field(s.config).empty()) {
-    render::load_vertex_field(volume.volume(),
-                              field_source(field_or_empty(fields, surface_field(s.config))),
-                              s.surface_field);
-    options.surface_field = s.surface_field;
+  render::VolumeRenderOptions options;
+  {
+    // The transfer function and the surfaces' field, once for all views: the first view's trace.
+    const PhaseClock::Phase setup(clock_, s.view_times[0].trace_ms);
+    options = volume_options(*s.config.volume, ranges_.scenes[k].color);
+    s.color_range = {options.transfer.range_lo, options.transfer.range_hi};
+    options.surfaces = s.config.surfaces;
+    options.ambient = s.config.ambient;
+    if (!surface_field(s.config).empty()) {
+      render::load_vertex_field(volume.volume(),
+                                field_source(field_or_empty(fields, surface_field(s.config))),
+                                s.surface_field);
+      options.surface_field = s.surface_field;
+    }
+    s.fragments.resize(s.views.size());
+    s.images.resize(s.views.size());
   }
-  s.fragments.resize(s.views.size());
-  s.images.resize(s.views.size());
-  s.trace_ms.assign(s.views.size(), 0);
-  s.trace_ms[0] = watch.ms();  // the transfer function and the surfaces' field, once
   for (std::size_t v = 0; v < s.views.size(); ++v) {
-    const render::Stopwatch view_watch;
+    const PhaseClock::Phase phase(clock_, s.view_times[v].trace_ms);
     const render::Camera camera = view_camera(s, k, v);
     // A camera inside this rank's tets starts every ray's walk in the eye's tet.
     options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
     s.fragments[v] = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
                                            camera, options);
     s.images[v] = render::resolve(s.fragments[v]);
-    s.trace_ms[v] += view_watch.ms();
   }
 }
 

@@ -19,6 +19,12 @@
 
 namespace tetray {
 
+// One view's own columns of its log row, this step; the columns the views share are the scene's
+// `record`.
+struct ViewTimes {
+  double trace_ms = 0, composite_ms = 0, hand_off_ms = 0, queue_wait_ms = 0;
+};
+
 struct SceneState {
   SceneState(const config::Scene& scene)
       : config(scene), clock(scene.trigger), views(orbit_views(scene.orbit)) {}
@@ -33,7 +39,7 @@ struct SceneState {
                                                // function's), this step
   std::vector<View> views;                     // one without an orbit
   std::vector<render::Framebuffer> images;     // per view
-  std::vector<double> trace_ms;                // per view
+  std::vector<ViewTimes> view_times;           // per view, zeroed at each due step
   std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
                                                        // compositing
   // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).

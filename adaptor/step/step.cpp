@@ -1,14 +1,14 @@
 // One execute call: the triggers say whether this step renders, and render_step runs its data
 // flow (docs/architecture.md §2): validate the solver's arrays -> update the volumes and BVHs ->
-// render the scenes on each rank -> composite onto the writer rank -> hand the images and log
-// rows to the writer thread. Every rank agrees on the outcome before each collective stage.
+// render the scenes on each rank -> composite onto the writer rank -> hand the images to the
+// writer thread, and their log rows once the call's clock has stopped. Every rank agrees on the
+// outcome before each collective stage. One clock (clock_) times the whole call: each stage
+// charges its phase to its log column, and what falls between the stages to other_ms.
 #include "adaptor/step/step_runner.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <utility>
-
-#include "render/core/stopwatch.hpp"
 
 namespace tetray {
 
@@ -21,7 +21,7 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
                               std::span<const FieldView> fields, const Changes& changes,
                               ExecuteReport* report) {
   if (finalized_) return {StatusCode::not_initialized, "execute called after finalize"};
-  const render::Stopwatch blocked;
+  clock_.start(&step_costs_.other_ms);
   // Changes accumulate over off-trigger calls: a volume sees everything since its last update.
   epochs_.geometry += changes.geometry;
   epochs_.topology += changes.topology;
@@ -33,11 +33,20 @@ Status Adaptor::Impl::execute(std::int64_t step, double time, const MeshView& me
   }
   // Off-trigger: no MPI, and ok on every rank (a writer error waits for the next agreement).
   if (!any_due) {
-    if (report != nullptr) fill_report(Status::success(), blocked.ms(), *report);
+    const double blocked_ms = clock_.stop();
+    if (report != nullptr) fill_report(Status::success(), blocked_ms, *report);
     return Status::success();
   }
+  // Charged from here on; the time since start() goes to the fresh other_ms at the first phase.
+  step_costs_ = StepRecord{};
+  handed_over_.clear();
   const Status status = arena_.execute([&] { return render_step(step, time, mesh, fields); });
-  const double blocked_ms = blocked.ms();
+  const double blocked_ms = clock_.stop();
+  const Status logged = guarded("timing log", [&] {
+    log_step(blocked_ms);
+    return Status::success();
+  });
+  if (pending_.ok() && !logged.ok()) pending_ = logged;  // reported at the next agreement
   if (report != nullptr) fill_report(status, blocked_ms, *report);
   if (!status.failed() && is_writer() && !config_.output.quiet) {
     print_progress(step, time, blocked_ms);
@@ -60,16 +69,16 @@ Status Adaptor::Impl::render_step(std::int64_t step, double time, const MeshView
   MeshView tet_mesh;
   Status status =
       guarded("validation", [&] { return validate_step(step, time, mesh, fields, tet_mesh); });
-  status = agree(comm_, status, &ranges_, &skips_);
+  status = agree_on(status, &ranges_, &skips_);
   if (!status.ok()) return status;
   drop_skipped_scenes();
   if (!ranges_.points.empty()) origin_ = 0.5 * (ranges_.points.lo() + ranges_.points.hi());
   ranges_.clear();
   status = update_step(tet_mesh, fields);
-  status = agree(comm_, status, &ranges_);
+  status = agree_on(status, &ranges_);
   if (!status.ok()) return status;
   status = render_scenes(fields);
-  status = agree(comm_, status);
+  status = agree_on(status);
   if (!status.ok()) return status;
   // Every rank agreed that the step renders: the triggers advance alike on every rank, whatever
   // the rank-local compositing stage below meets (it is reported at the next agreement).
@@ -86,6 +95,7 @@ void Adaptor::Impl::begin_step(std::int64_t step, double time) {
     if (s.due) {
       s.record =
           StepRecord{.step = step, .time = time, .scene = s.config.name, .threads = threads_};
+      s.view_times.assign(s.views.size(), ViewTimes{});
     }
   }
   bvh_decision_ = "none";
@@ -129,6 +139,7 @@ Status Adaptor::Impl::render_scenes(std::span<const FieldView> fields) {
 void Adaptor::Impl::sample_probes(std::int64_t step, double time,
                                   std::span<const FieldView> fields) {
   if (probes_.empty()) return;
+  const PhaseClock::Phase phase(clock_, step_costs_.probes_ms);
   const SceneState* first = first_due_scene();
   std::string error =
       probes_.sample(comm_, config_.output.writer_rank, first ? &volumes_[first->volume] : nullptr,
@@ -154,6 +165,35 @@ SceneState* Adaptor::Impl::first_due_scene(std::size_t v) {
   return nullptr;
 }
 
+Status Adaptor::Impl::agree_on(const Status& local, StepRanges* ranges, SceneSkips* skips) {
+  const PhaseClock::Phase phase(clock_, step_costs_.agree_ms);
+  return agree(comm_, local, ranges, skips);
+}
+
+// Each row gets its view's hand-off (which ended after its row was made) and the call's blocked
+// time; the first row also the step's costs that belong to no scene. Summed over the rows, the
+// stage columns are then the whole call (docs/outputs.md, "The timing log").
+void Adaptor::Impl::log_step(double blocked_ms) {
+  if (handed_over_.empty()) return;
+  std::vector<StepRecord> rows;
+  rows.reserve(handed_over_.size());
+  for (HandedOver& h : handed_over_) {
+    const ViewTimes& times = scenes_[h.scene].view_times[h.view];
+    h.row.hand_off_ms = times.hand_off_ms;
+    h.row.queue_wait_ms = times.queue_wait_ms;
+    h.row.blocked_ms = blocked_ms;
+    rows.push_back(std::move(h.row));
+  }
+  handed_over_.clear();
+  StepRecord& first = rows.front();
+  first.check_ms += step_costs_.check_ms;
+  first.ingest_ms += step_costs_.ingest_ms;
+  first.agree_ms += step_costs_.agree_ms;
+  first.probes_ms += step_costs_.probes_ms;
+  first.other_ms += step_costs_.other_ms;
+  writer_->log_rows(std::move(rows));
+}
+
 void Adaptor::Impl::fill_report(const Status& status, double blocked_ms,
                                 ExecuteReport& report) const {
   const auto due =
@@ -176,7 +216,7 @@ void Adaptor::Impl::print_progress(std::int64_t step, double time, double blocke
   int rendered = 0;
   for (const SceneState& s : scenes_) {
     if (!s.due) continue;
-    for (double ms : s.trace_ms) trace_ms += ms;
+    for (const ViewTimes& view : s.view_times) trace_ms += view.trace_ms;
     ++rendered;
   }
   std::printf("tetray: step %lld t=%s: %d scene(s), bvh %s, trace %.1f ms, blocked %.1f ms\n",

@@ -29,6 +29,7 @@
 #include "adaptor/output/step_record.hpp"
 #include "adaptor/step/collective.hpp"
 #include "adaptor/step/field_volume.hpp"
+#include "adaptor/step/phase_clock.hpp"
 #include "adaptor/step/probes.hpp"
 #include "adaptor/step/scene_state.hpp"
 #include "adaptor/step/volume_scene.hpp"
@@ -79,6 +80,10 @@ class Adaptor::Impl {
   SceneState* first_due_scene(std::size_t v = kAnyVolume);
   void print_progress(std::int64_t step, double time, double blocked_ms) const;
   void fill_report(const Status& status, double blocked_ms, ExecuteReport& report) const;
+  // agree() on comm_, its time (waiting for the slowest rank included) charged to agree_ms.
+  Status agree_on(const Status& local, StepRanges* ranges = nullptr, SceneSkips* skips = nullptr);
+  // On the writer rank, after the call's clock stopped: the log rows of the views it handed over.
+  void log_step(double blocked_ms);
 
   // validate.cpp. A mesh of cells comes back in `tet_mesh` as its tets.
   Status validate_step(std::int64_t step, double time, const MeshView& mesh,
@@ -113,8 +118,7 @@ class Adaptor::Impl {
   render::TraceOptions trace_options(const SceneState& s) const;
   void load_color(SceneState& s, std::size_t k, std::span<const FieldView> fields,
                   render::TraceOptions& options);
-  void load_cap(SceneState& s, const render::ValueRange& global,
-                std::span<const FieldView> fields) const;
+  void load_cap(SceneState& s, const render::ValueRange& global, std::span<const FieldView> fields);
 
   // scene_cameras.cpp. Scene k's camera for view v (its orbit's, or the camera as given).
   render::Camera view_camera(const SceneState& s, std::size_t k, std::size_t v) const;
@@ -126,15 +130,13 @@ class Adaptor::Impl {
   Status composite_and_submit_view(SceneState& s, std::size_t k, std::size_t v,
                                    const SceneCounters& sums, std::uint64_t rss,
                                    Status& local_failure);
-  Status composite_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
-                        Status& local_failure);
-  Status composite_layered_view(SceneState& s, std::size_t k, std::size_t v, StepRecord& r,
-                                Status& local_failure);
+  Status composite_view(SceneState& s, std::size_t k, std::size_t v, Status& local_failure);
+  Status composite_layered_view(SceneState& s, std::size_t k, std::size_t v, Status& local_failure);
 
   // output_hand_off.cpp
   Status write_rank_images();
-  void submit_view(SceneState& s, std::size_t v, StepRecord r, const SceneCounters& sums,
-                   std::uint64_t rss);
+  void submit_view(SceneState& s, std::size_t k, std::size_t v, StepRecord r,
+                   const SceneCounters& sums, std::uint64_t rss);
   std::vector<ColorScale> color_scales(const SceneState& s) const;
 
   // step_runner.cpp
@@ -144,6 +146,16 @@ class Adaptor::Impl {
 
   Communicator comm_;
   config::Config config_;
+  // The clock of the execute call in progress (phase_clock.hpp); the step's costs that belong to
+  // no scene (check, ingest, agree, probes, other), which go to its first log row; and on the
+  // writer rank the rows of the views handed to the writer, completed when the call returns.
+  PhaseClock clock_;
+  StepRecord step_costs_;
+  struct HandedOver {
+    std::size_t scene = 0, view = 0;
+    StepRecord row;
+  };
+  std::vector<HandedOver> handed_over_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
   std::vector<WalkCache> walks_;  // per volume, built for volume scenes only

@@ -4,7 +4,6 @@
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/step/color_field.hpp"
 #include "adaptor/step/step_runner.hpp"
-#include "render/core/stopwatch.hpp"
 #include "render/trace/layer_shading.hpp"
 #include "render/walk/clip_cap.hpp"
 
@@ -30,7 +29,6 @@ void Adaptor::Impl::trace_surface_scene(SceneState& s, std::size_t k,
   if (s.cap_colormap != nullptr) load_cap(s, ranges_.scenes[k].cap, fields);
   // Every view from the one BVH of the step: only the camera changes.
   s.images.resize(s.views.size());
-  s.trace_ms.resize(s.views.size());
   s.shadow_terms.resize(s.views.size());
   const bool transparent = render::has_transparency(s.config.surfaces);
   s.layers.resize(transparent ? s.views.size() : 0);
@@ -43,7 +41,7 @@ void Adaptor::Impl::trace_surface_view(SceneState& s, std::size_t k, std::size_t
                                        const render::TraceOptions& options) {
   const FieldVolume& volume = volumes_[s.volume];
   const bool shadows = options.lights.shadow_count() > 0;
-  const render::Stopwatch watch;
+  const PhaseClock::Phase phase(clock_, s.view_times[v].trace_ms);
   const render::Camera camera = view_camera(s, k, v);
   if (!s.layers.empty()) {
     render::trace_layers(s.layers[v], volume.volume(), volume.bvh(), camera, s.config.surfaces,
@@ -63,7 +61,6 @@ void Adaptor::Impl::trace_surface_view(SceneState& s, std::size_t k, std::size_t
                             terms);
     }
   }
-  s.trace_ms[v] = watch.ms();
 }
 
 render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
@@ -82,7 +79,7 @@ render::TraceOptions Adaptor::Impl::trace_options(const SceneState& s) const {
 // agreed global range when automatic).
 void Adaptor::Impl::load_color(SceneState& s, std::size_t k, std::span<const FieldView> fields,
                                render::TraceOptions& options) {
-  const render::Stopwatch watch;
+  const PhaseClock::Phase phase(clock_, s.record.color_ms);
   render::load_color_field(volumes_[s.volume].volume(),
                            field_source(field_or_empty(fields, s.config.color_by)));
   render::ValueRange range =
@@ -92,19 +89,17 @@ void Adaptor::Impl::load_color(SceneState& s, std::size_t k, std::span<const Fie
   usable_color_range(range);
   s.color_range = range;
   options.color_by = {s.colormap, static_cast<float>(range.lo), static_cast<float>(range.hi)};
-  s.record.color_ms += watch.ms();
 }
 
 // The cap's field in the vertex store's order and its colormap range for this step.
 void Adaptor::Impl::load_cap(SceneState& s, const render::ValueRange& global,
-                             std::span<const FieldView> fields) const {
-  const render::Stopwatch watch;
+                             std::span<const FieldView> fields) {
+  const PhaseClock::Phase phase(clock_, s.record.color_ms);
   const config::CapSpec& spec = s.config.shading.cap;
   render::load_vertex_field(volumes_[s.volume].volume(),
                             field_source(field_or_empty(fields, spec.field)), s.cap_field);
   s.cap_range = spec.range.automatic ? global : render::ValueRange{spec.range.lo, spec.range.hi};
   usable_color_range(s.cap_range);
-  s.record.color_ms += watch.ms();
 }
 
 }  // namespace tetray

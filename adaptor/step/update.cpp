@@ -6,7 +6,6 @@
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/step/color_field.hpp"
 #include "adaptor/step/step_runner.hpp"
-#include "render/core/stopwatch.hpp"
 #include "render/parallel/step_reductions.hpp"
 
 namespace tetray {
@@ -33,7 +32,7 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
     FieldVolume& volume = volumes_[v];
     tets_skipped_ += skipped_[v];
     if (!volume.stale(epochs_)) continue;  // nothing it reads changed: no refit
-    const render::Stopwatch watch;
+    const PhaseClock::Phase phase(clock_, first->record.bvh_ms);
     const VolumeInputs inputs{tets_, tie_keys_, point_source(mesh.points),
                               field_source(field_or_empty(fields, volume.field()))};
     const render::UpdatePolicy policy = update_policy(v);
@@ -41,7 +40,6 @@ Status Adaptor::Impl::update_volumes(const MeshView& mesh, std::span<const Field
       gradient_changes_[v] = volume.needs_load(epochs_) ? kGradientsLoaded : kGradientsUpdated;
     const render::UpdateResult result = volume.update(inputs, epochs_, policy, origin_);
     walks_[v].after_update(volume.volume(), result.kind);
-    first->record.bvh_ms = watch.ms();
     first->record.bvh_update = render::to_string(result.kind);
     strongest = std::max(strongest, result.kind);
   }
@@ -80,14 +78,18 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
   if (smooth.empty()) return updated;
   std::vector<std::uint8_t> changes = gradient_changes_;
   changes.push_back(updated.ok() ? 0 : 1);
-  if (const int rc = render::or_over_ranks(changes, comm_.comm); rc != MPI_SUCCESS) {
-    return {StatusCode::mpi_error, "smooth shading: agreeing on changes: " + mpi_error_text(rc)};
+  {
+    const PhaseClock::Phase phase(clock_, step_costs_.agree_ms);
+    if (const int rc = render::or_over_ranks(changes, comm_.comm); rc != MPI_SUCCESS) {
+      return {StatusCode::mpi_error, "smooth shading: agreeing on changes: " + mpi_error_text(rc)};
+    }
   }
   if (changes.back() != 0) return updated;
   return guarded("smooth shading", [&]() -> Status {
     for (std::size_t v : smooth) {
       if (changes[v] == 0) continue;
-      const render::Stopwatch watch;
+      // The exchange with the other ranks is part of the gradients, so of the volume's update.
+      const PhaseClock::Phase phase(clock_, first_due_scene(v)->record.bvh_ms);
       render::TetVolume& volume = volumes_[v].volume();
       render::ProtocolStatus shared = render::ProtocolStatus::success();
       if (changes[v] & kGradientsLoaded) {
@@ -95,7 +97,6 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
       }
       if (shared.ok()) shared = shared_gradients_[v].compute(volume);
       if (!shared.ok()) return to_status(std::move(shared));
-      first_due_scene(v)->record.bvh_ms += watch.ms();
     }
     return Status::success();
   });
@@ -118,13 +119,14 @@ Status Adaptor::Impl::global_inputs(std::span<const FieldView> fields) {
     }
     const bool volume_range = s.config.volume && s.config.volume->range.automatic;
     if ((s.colormap != nullptr && s.config.color_range.automatic) || volume_range) {
-      const render::Stopwatch watch;
+      const PhaseClock::Phase phase(clock_, s.record.color_ms);
       const std::string& colored = volume_range ? s.config.field : s.config.color_by;
       ranges.color = local_field_range(field_or_empty(fields, colored));
-      s.record.color_ms += watch.ms();
     }
-    if (s.cap_colormap != nullptr && s.config.shading.cap.range.automatic)
+    if (s.cap_colormap != nullptr && s.config.shading.cap.range.automatic) {
+      const PhaseClock::Phase phase(clock_, s.record.color_ms);
       ranges.cap = local_field_range(field_or_empty(fields, s.config.shading.cap.field));
+    }
   }
   return Status::success();
 }

@@ -7,7 +7,6 @@
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/input/tie_keys.hpp"
 #include "adaptor/step/step_runner.hpp"
-#include "render/core/stopwatch.hpp"
 #include "render/volume/mesh_check.hpp"
 
 namespace tetray {
@@ -43,11 +42,12 @@ Status Adaptor::Impl::validate_step(std::int64_t step, double time, const MeshVi
 
 Status Adaptor::Impl::split_and_validate(const MeshView& mesh, std::span<const FieldView> fields,
                                          MeshView& tet_mesh) {
-  const render::Stopwatch split;
-  if (std::string e = cell_tets_.resolve(mesh, epochs_.topology, tet_mesh); !e.empty()) {
-    return invalid(e);
+  {
+    const PhaseClock::Phase split(clock_, step_costs_.ingest_ms);
+    if (std::string e = cell_tets_.resolve(mesh, epochs_.topology, tet_mesh); !e.empty()) {
+      return invalid(e);
+    }
   }
-  if (SceneState* first = first_due_scene()) first->record.ingest_ms += split.ms();
   local_tets_ = tet_mesh.tets.count;
   return validate(tet_mesh, fields);
 }
@@ -60,16 +60,21 @@ void Adaptor::Impl::forget_topology() {
 Status Adaptor::Impl::validate(const MeshView& mesh, std::span<const FieldView> fields) {
   if (std::string e = check_mesh_shape(mesh); !e.empty()) return invalid(e);
   if (Status st = check_scene_fields(mesh, fields); !st.ok()) return st;
-  const render::Stopwatch ingest;
-  if (std::string e = convert_topology(mesh); !e.empty()) return invalid(e);
-  if (SceneState* first = first_due_scene()) first->record.ingest_ms += ingest.ms();
+  {
+    const PhaseClock::Phase ingest(clock_, step_costs_.ingest_ms);
+    if (std::string e = convert_topology(mesh); !e.empty()) return invalid(e);
+  }
   bool loading = false;
   for (std::size_t v = 0; v < volumes_.size(); ++v) {
     if (!needs_check(v)) continue;
     if (Status st = check_volume(v, mesh, fields); !st.ok()) return st;
     loading = loading || (first_due_scene(v) != nullptr && volumes_[v].needs_load(epochs_));
   }
-  if (loading) add_point_bounds(mesh.points, ranges_.points);
+  if (loading) {
+    // The bounds of a load's points, for the local origin every rank shares: part of loading.
+    const PhaseClock::Phase ingest(clock_, step_costs_.ingest_ms);
+    add_point_bounds(mesh.points, ranges_.points);
+  }
   return Status::success();
 }
 
@@ -125,7 +130,7 @@ std::string Adaptor::Impl::convert_topology(const MeshView& mesh) {
 // volume, a faulty color field only its scene.
 Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
                                    std::span<const FieldView> fields) {
-  const render::Stopwatch watch;
+  const PhaseClock::Phase phase(clock_, step_costs_.check_ms);
   FieldVolume& volume = volumes_[v];
   const Status volume_check = check_field(volume.field(), volume.keep(), mesh, fields);
   if (volume_check.failed()) return volume_check;
@@ -152,7 +157,6 @@ Status Adaptor::Impl::check_volume(std::size_t v, const MeshView& mesh,
   const bool skipping = config_.nonfinite == render::NonFinitePolicy::skip_tets;
   skipped_[v] = skipping ? count_zeros(volume.keep()) : 0;
   drop_ghost_tets(mesh.tets.ghost, volume.keep());
-  first_due_scene(v)->record.check_ms += watch.ms();
   return Status::success();
 }
 

@@ -52,4 +52,11 @@ void report_time_step(const ElasticSolver& solver, const ElasticSetup& setup, co
         setup.dt, limit, setup.dt / limit);
 }
 
+void report_blocked(const Comm& comm, double wall_seconds, double blocked_seconds) {
+  if (comm.rank() != 0) return;
+  const double percent = wall_seconds > 0 ? 100 * blocked_seconds / wall_seconds : 0;
+  std::printf("tetray-minisolver: wall %.3f s, blocked in tetray %.3f s (%.0f%%)\n", wall_seconds,
+              blocked_seconds, percent);
+}
+
 }  // namespace minisolver

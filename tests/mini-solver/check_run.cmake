@@ -3,7 +3,8 @@
 # its exit code and output, and, for a run that should succeed, every file docs/architecture.md
 # §3 says it owes, for each scene of the config and each step the trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
 # else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv,
-# and the pixels of the first skin image (SKIN_CHECK).
+# and the pixels of the first skin image (SKIN_CHECK); and its last line: the wall time and the
+# time tetray blocked the run, with blocked <= wall and the percentage their ratio.
 # A refused run must write no image. Every failed check is listed, then the test fails.
 cmake_minimum_required(VERSION 3.25)
 set(failures "")
@@ -115,6 +116,32 @@ function(check_outputs)
   set(failures ${failures} PARENT_SCOPE)
 endfunction()
 
+# "tetray-minisolver: wall W s, blocked in tetray B s (P%)", W and B with 3 decimals: B <= W and
+# P = 100 B / W for some B and W that the printed ones round from (each within 0.5 ms), P rounded.
+function(check_blocked_line text)
+  set(number "([0-9]+)\\.([0-9][0-9][0-9])")
+  if(NOT text MATCHES "tetray-minisolver: wall ${number} s, blocked in tetray ${number} s \\(([0-9]+)%\\)")
+    fail("no line 'tetray-minisolver: wall W s, blocked in tetray B s (P%)'")
+    set(failures ${failures} PARENT_SCOPE)
+    return()
+  endif()
+  set(percent ${CMAKE_MATCH_5})
+  math(EXPR wall "${CMAKE_MATCH_1} * 1000 + ${CMAKE_MATCH_2}")
+  math(EXPR blocked "${CMAKE_MATCH_3} * 1000 + ${CMAKE_MATCH_4}")
+  if(wall LESS_EQUAL 0 OR blocked GREATER wall)
+    fail("wall ${wall} ms, blocked ${blocked} ms: blocked must lie within a positive wall time")
+  else()
+    # In half milliseconds: the least ratio (2B - 1) / (2W + 1) and the greatest (2B + 1) / (2W - 1),
+    # as percentages rounded down and up, one more either way for the rounding of P.
+    math(EXPR least "100 * (2 * ${blocked} - 1) / (2 * ${wall} + 1) - 1")
+    math(EXPR greatest "(100 * (2 * ${blocked} + 1) + 2 * ${wall} - 2) / (2 * ${wall} - 1) + 1")
+    if(percent LESS least OR percent GREATER greatest)
+      fail("${percent}% printed for blocked ${blocked} ms of wall ${wall} ms (${least}..${greatest}%)")
+    endif()
+  endif()
+  set(failures ${failures} PARENT_SCOPE)
+endfunction()
+
 file(REMOVE_RECURSE ${OUT_DIR})  # files of an earlier run must not pass the checks
 # The launch flags of tetray_add_mpi_test (tests/CMakeLists.txt).
 execute_process(
@@ -132,6 +159,7 @@ foreach(regex IN LISTS OUTPUT)
 endforeach()
 if(EXIT_CODE EQUAL 0)
   check_outputs()
+  check_blocked_line("${output}")
   # SKIN_CHECK: the command that checks the first skin image against the beam's geometry.
   if(DEFINED SKIN_CHECK)
     execute_process(COMMAND ${SKIN_CHECK} RESULT_VARIABLE skin_code OUTPUT_VARIABLE skin_output
