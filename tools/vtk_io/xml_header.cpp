@@ -160,14 +160,54 @@ std::string size_problem(const Tag& tag, const std::string& name, const std::str
   return {};
 }
 
+// The value of a tag's attribute, or nothing.
+std::optional<std::string> attribute(const Tag& tag, std::string_view name) {
+  for (const auto& [key, value] : tag.attributes) {
+    if (key == name) return value;
+  }
+  return std::nullopt;
+}
+
+// Where a <Points> element is open: its level, so that a tag below it is known to be inside.
+class PointsScope {
+ public:
+  // `tag` was just read with the scanner's depth now `depth`.
+  void enter(const Tag& tag, int depth) {
+    const int parent = tag.self_closing ? depth : depth - 1;
+    if (parent < level_) level_ = kNone;  // the <Points> element has closed
+    inside_ = level_ != kNone && parent >= level_;
+    if (tag.name == "Points" && !tag.self_closing) level_ = depth;
+  }
+  bool inside() const { return inside_; }
+
+ private:
+  static constexpr int kNone = 1 << 30;
+  int level_ = kNone;
+  bool inside_ = false;
+};
+
+// Point coordinates of other than 3 components: vtkPoints refuses the array, VTK 9.1's reader then
+// reads the file's values into the points' default array and abandons an iterator on it
+// (vtkXMLReader::ReadArrayValues), a leak; refused here first.
+std::string points_problem(const Tag& tag) {
+  const std::string components = attribute(tag, "NumberOfComponents").value_or("1");
+  if (tag.name != "DataArray" || leading_integer(components) == std::optional<std::int64_t>(3)) {
+    return {};
+  }
+  return "the point coordinates (<Points><DataArray>) have NumberOfComponents=\"" + components +
+         "\", not 3";
+}
+
 std::string header_problem(MarkupScanner& scanner, std::int64_t file_bytes) {
   std::int64_t most_values = file_bytes;
   int depth = 0;
+  PointsScope points;
   while (std::optional<Tag> tag = scanner.next_start_tag(depth)) {
     if (depth > kMaxXmlDepth) {
       return "XML elements nest deeper than " + std::to_string(kMaxXmlDepth) +
              " levels; this is no VTK file";
     }
+    points.enter(*tag, depth);
     for (const auto& [name, value] : tag->attributes) {
       if (name == "compressor" && !value.empty()) {
         most_values = file_bytes * kMaxValuesPerCompressedByte;
@@ -176,6 +216,9 @@ std::string header_problem(MarkupScanner& scanner, std::int64_t file_bytes) {
           !problem.empty()) {
         return problem;
       }
+    }
+    if (points.inside()) {
+      if (std::string problem = points_problem(*tag); !problem.empty()) return problem;
     }
     if (tag->name == "AppendedData") break;
   }

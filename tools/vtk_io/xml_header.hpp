@@ -25,8 +25,8 @@ inline constexpr std::int64_t kMaxValuesPerCompressedByte = 1 << 14;
 // Empty when the elements of the XML file nest at most kMaxXmlDepth deep and every size its
 // elements announce (NumberOfComponents, NumberOfPoints, NumberOfCells, NumberOfTuples, ...)
 // fits the file: none negative (nor an offset, ghost level or time step), uncompressed every
-// value takes at least one byte, and an appended data offset lies inside the file. Else what is
-// wrong.
+// value takes at least one byte, and an appended data offset lies inside the file; and point
+// coordinates have 3 components. Else what is wrong.
 // The scan stops at raw appended data (binary, not XML), so a large .vtu costs only its header.
 std::string xml_header_problem(const std::string& path);
 
