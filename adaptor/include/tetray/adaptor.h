@@ -3,8 +3,9 @@
  * solver's arrays, set with tetray_set_mesh and tetray_set_field; they must stay valid until
  * the tetray_execute call that reads them. Every call returns a tetray_status, and
  * tetray_last_error() is the message of the last call on this thread: "" after a call that
- * returned TETRAY_OK (it does not keep an older error). Nothing aborts or throws. Collective calls return the same status on every rank of the adaptor's
- * communicator; a message caused by one rank starts with "rank N: ". */
+ * returned TETRAY_OK (it does not keep an older error). Nothing aborts or throws. Collective
+ * calls return the same status on every rank of the adaptor's communicator; a message caused by
+ * one rank starts with "rank N: ". */
 #ifndef TETRAY_ADAPTOR_H
 #define TETRAY_ADAPTOR_H
 
