@@ -32,16 +32,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string config(const std::string& directory) {
-  return "output: {directory: " + directory + ", formats: [png], quiet: true}\n" +
-         "scenes:\n"
-         "  - name: ball\n"
-         "    field: distance\n"
-         "    isovalues: [" +
-         std::to_string(kRadius) +
-         "]\n"
-         "    camera: {eye: [0.4, 0.3, 3], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: 40}\n" +
-         "    image: {width: " + std::to_string(kSide) + ", height: " + std::to_string(kSide) +
-         "}\n";
+  return ball_config(directory, kRadius, "[0.4, 0.3, 3]", 40, kSide);
 }
 
 // The point of `cells` whose distance to the centre is nearest the isovalue: a fault there

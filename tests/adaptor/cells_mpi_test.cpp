@@ -25,15 +25,7 @@ constexpr int kCubes = 12, kSide = 64;
 constexpr double kRadius = 0.6, kEye = 3, kFov = 40;
 
 std::string config(const std::string& directory) {
-  return "output: {directory: " + directory + ", formats: [png], quiet: true}\n" +
-         "scenes:\n"
-         "  - name: ball\n"
-         "    field: distance\n"
-         "    isovalues: [" +
-         std::to_string(kRadius) + "]\n    camera: {eye: [0, 0, " + std::to_string(kEye) +
-         "], look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: " + std::to_string(kFov) +
-         "}\n    image: {width: " + std::to_string(kSide) + ", height: " + std::to_string(kSide) +
-         "}\n";
+  return ball_config(directory, kRadius, "[0, 0, " + std::to_string(kEye) + "]", kFov, kSide);
 }
 
 void render(MPI_Comm comm, const std::string& directory, const RankCells& cells) {

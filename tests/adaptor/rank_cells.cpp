@@ -46,4 +46,17 @@ RankCells share(const CellMesh& mesh, std::size_t first, std::size_t last, unsig
   return out;
 }
 
+std::string ball_config(const std::string& directory, double radius, const std::string& eye,
+                        double fov_deg, int side) {
+  return "output: {directory: " + directory + ", formats: [png], quiet: true}\n" +
+         "scenes:\n"
+         "  - name: ball\n"
+         "    field: distance\n"
+         "    isovalues: [" +
+         std::to_string(radius) + "]\n    camera: {eye: " + eye +
+         ", look_at: [0, 0, 0], up: [0, 1, 0], fov_deg: " + std::to_string(fov_deg) +
+         "}\n    image: {width: " + std::to_string(side) + ", height: " + std::to_string(side) +
+         "}\n";
+}
+
 }  // namespace tetray::testing

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "support/cell_meshes.hpp"
@@ -24,5 +25,10 @@ struct RankCells {
 // The cells [first, last) of `mesh`, mapped onto [-1, 1]^3, their points in the order of
 // `seed`'s shuffle (seed 0: the mesh's own order).
 RankCells share(const CellMesh& mesh, std::size_t first, std::size_t last, unsigned seed);
+
+// The config of one scene, "ball": the isosurface distance = `radius`, PNG only, a side x side
+// image from `eye` ("[x, y, z]") looking at the centre with +y up.
+std::string ball_config(const std::string& directory, double radius, const std::string& eye,
+                        double fov_deg, int side);
 
 }  // namespace tetray::testing

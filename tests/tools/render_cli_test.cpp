@@ -5,11 +5,11 @@
 
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 
 #include "scenes/box_mesh.hpp"
 #include "support/png_read.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/text_edit.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray {
@@ -159,12 +159,10 @@ TEST(RenderCli, ATinyUpIsADirection) {
 TEST(RenderCli, ANegativeCellCountIsAnError) {
   ScratchDir dir;
   const std::string grid = write_gyroid(dir);
-  std::ifstream in(grid, std::ios::binary);
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  const std::size_t at = text.find("NumberOfCells=\"");
-  ASSERT_NE(at, std::string::npos);
-  text = text.substr(0, at + 15) + "-" + text.substr(at + 15);
-  std::ofstream(dir / "negative.vtu", std::ios::binary) << text;
+  const std::string text = testing::slurp(grid);
+  ASSERT_NE(text.find("NumberOfCells=\""), std::string::npos);
+  std::ofstream(dir / "negative.vtu", std::ios::binary)
+      << testing::replaced_once(text, "NumberOfCells=\"", "NumberOfCells=\"-");
   const CommandResult run =
       run_render(dir / "negative.vtu" + " --field gyroid --iso 0 -o " + dir / "out.png");
   EXPECT_EQ(run.exit_code, 1) << run.output;  // an exit, not a signal

@@ -10,6 +10,7 @@
 #include "plane_scene.hpp"
 #include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/text_edit.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::testing {
@@ -223,11 +224,10 @@ TEST(Replay, AnEmptyPieceAddsNothingAndAnAllEmptyFileSaysSo) {
 TEST(Replay, ANegativeCellCountFailsTheStep) {
   ScratchDir dir;
   const auto files = write_series(dir);
-  std::string text = read_text(files[1]);
-  const std::size_t at = text.find("NumberOfCells=\"");
-  ASSERT_NE(at, std::string::npos);
-  text = text.substr(0, at + 15) + "-" + text.substr(at + 15);
-  std::ofstream(files[1], std::ios::binary) << text;
+  const std::string text = read_text(files[1]);
+  ASSERT_NE(text.find("NumberOfCells=\""), std::string::npos);
+  std::ofstream(files[1], std::ios::binary)
+      << replaced_once(text, "NumberOfCells=\"", "NumberOfCells=\"-");
   const std::string command = std::string(TETRAY_REPLAY) + " -c " + write_config(dir, "out") + " " +
                               (dir / "series.pvd") + " 2>" + (dir / "stderr.txt");
   EXPECT_EQ(std::system(command.c_str()) >> 8, 1) << command;  // an exit, not a signal

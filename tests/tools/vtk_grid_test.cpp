@@ -13,11 +13,11 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <fstream>
-#include <iterator>
 
 #include "scenes/box_mesh.hpp"
 #include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/text_edit.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 
 namespace tetray::vtkio {
@@ -128,12 +128,11 @@ TEST(VtkGrid, AnEmptyPieceWrittenByVtkAddsNothing) {
   ASSERT_FALSE(read_grid(dir / "pieces_1.vtu", piece, error));
   EXPECT_TRUE(contains(error, "pieces_1.vtu': the grid is empty (no cells)")) << error;
 
-  std::ifstream summary(dir / "pieces.pvtu");
-  std::string text{std::istreambuf_iterator<char>(summary), std::istreambuf_iterator<char>()};
+  const std::string text = testing::slurp(dir / "pieces.pvtu");
   const std::string first = "<Piece Source=\"pieces_0.vtu\"/>";
   ASSERT_NE(text.find(first), std::string::npos) << text;
-  text.replace(text.find(first), first.size(), first + "<Piece Source=\"pieces_1.vtu\"/>");
-  write_text(dir / "both.pvtu", text);
+  write_text(dir / "both.pvtu",
+             testing::replaced_once(text, first, first + "<Piece Source=\"pieces_1.vtu\"/>"));
   TetGrid read;
   ASSERT_TRUE(read_grid(dir / "both.pvtu", read, error)) << error;
   EXPECT_EQ(read.tets, whole.tets);

@@ -21,6 +21,7 @@
 
 #include "support/pvtu_summary.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/text_edit.hpp"
 #include "tools/vtk_io/vtk_files.hpp"
 #include "tools/vtk_io/xml_header.hpp"
 
@@ -273,10 +274,8 @@ TEST(VtkMalformed, HeaderSizesBeyondTheFileAreRefused) {
   write_text(dir / "good.vtu", good);
   EXPECT_EQ(xml_header_problem(dir / "good.vtu"), "");
 
-  std::string components = good;
-  components.replace(components.find("NumberOfComponents=\"3\""), 22,
-                     "NumberOfComponents = \"2000000000\"");
-  write_text(dir / "components.vtu", components);
+  write_text(dir / "components.vtu", testing::replaced_once(good, "NumberOfComponents=\"3\"",
+                                                            "NumberOfComponents = \"2000000000\""));
   EXPECT_TRUE(contains(read_error(dir / "components.vtu"),
                        "<DataArray> declares NumberOfComponents=\"2000000000\", more than 1024"));
 
@@ -291,9 +290,7 @@ TEST(VtkMalformed, HeaderSizesBeyondTheFileAreRefused) {
       "<VTKFile compressor=\"vtkZLibDataCompressor\"><Piece NumberOfPoints=\"5000\"/></VTKFile>";
   write_text(dir / "compressed.vtu", compressed);
   EXPECT_EQ(xml_header_problem(dir / "compressed.vtu"), "");
-  std::string plain = compressed;
-  plain.replace(plain.find("compressor"), 10, "compressee");
-  write_text(dir / "plain.vtu", plain);
+  write_text(dir / "plain.vtu", testing::replaced_once(compressed, "compressor", "compressee"));
   EXPECT_TRUE(contains(xml_header_problem(dir / "plain.vtu"), "NumberOfPoints=\"5000\""));
 }
 
@@ -316,26 +313,23 @@ TEST(VtkMalformed, NegativeCountsAndOffsetsAreRefusedBeforeVtkReadsThem) {
       {"<UnstructuredGrid>", "<UnstructuredGrid NumberOfPieces=\"-1\">", "NumberOfPieces"},
   };
   for (const Change& change : changes) {
-    std::string text = good;
-    text.replace(text.find(change.from), change.from.size(), change.to);
-    write_text(dir / "negative.vtu", text);
+    write_text(dir / "negative.vtu", testing::replaced_once(good, change.from, change.to));
     const std::string error = read_error(dir / "negative.vtu");
     EXPECT_TRUE(contains(error, "declares " + change.attribute + "="))
         << change.to << ": " << error;
     EXPECT_TRUE(contains(error, "a negative number")) << change.to << ": " << error;
   }
-  std::string beyond = good;
-  beyond.replace(beyond.find("Name=\"offsets\""), 14, "Name=\"offsets\" offset=\"100000\"");
-  write_text(dir / "beyond.vtu", beyond);
+  write_text(dir / "beyond.vtu", testing::replaced_once(good, "Name=\"offsets\"",
+                                                        "Name=\"offsets\" offset=\"100000\""));
   EXPECT_TRUE(contains(read_error(dir / "beyond.vtu"), "offset=\"100000\", beyond the end"));
 }
 
 // The same file through a .pvtu's piece: the piece is named with the cause.
 TEST(VtkMalformed, ANegativeCountInAPieceNamesThePiece) {
   ScratchDir dir;
-  std::string text = vtu_text("0 1 2 3", "4", "10", 1);
-  text.replace(text.find("NumberOfCells=\"1\""), 17, "NumberOfCells=\"-1\"");
-  write_text(dir / "piece.vtu", text);
+  write_text(dir / "piece.vtu",
+             testing::replaced_once(vtu_text("0 1 2 3", "4", "10", 1), "NumberOfCells=\"1\"",
+                                    "NumberOfCells=\"-1\""));
   write_text(dir / "whole.pvtu", testing::pvtu_summary({"piece.vtu"}));
   const std::string error = read_error(dir / "whole.pvtu");
   EXPECT_TRUE(contains(error, "piece.vtu': <Piece> declares NumberOfCells=\"-1\", a negative"))

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "render/composite/fragment_composite.hpp"
+#include "support/over_reference.hpp"
 
 namespace tetray::render {
 namespace {
@@ -57,17 +58,7 @@ F fragment_of(const Surface& s) {
 
 // The closed form of "over" for surfaces listed front to back.
 std::array<double, 4> over(std::span<const Surface> front_to_back) {
-  std::array<double, 4> out{};
-  double clear = 1;  // prod_i (1 - a_i)
-  for (std::size_t i = 0; i < front_to_back.size(); ++i) {
-    double seen = 1;  // prod_{j<i} (1 - a_j)
-    for (std::size_t j = 0; j < i; ++j) seen *= 1.0 - front_to_back[j].alpha;
-    for (int c = 0; c < 3; ++c)
-      out[c] += double{front_to_back[i].color[c]} * front_to_back[i].alpha * seen;
-    clear *= 1.0 - front_to_back[i].alpha;
-  }
-  out[3] = 1.0 - clear;
-  return out;
+  return ::tetray::testing::over_front_to_back(front_to_back);
 }
 
 // The same surfaces with every run of equal depths in the opposite key order.

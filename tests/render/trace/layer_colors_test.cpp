@@ -13,9 +13,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "render/trace/layer_shading.hpp"
+#include "support/over_reference.hpp"
 #include "support/reference_camera.hpp"
 #include "support/render_fixtures.hpp"
 
@@ -38,18 +40,9 @@ const Surface kBlue{{0.1f, 0.3f, 0.95f}, 0.35f};  // isovalue 0.5
 // B's 0. Ties the other way round would give blue, red, blue, red.
 const Surface kFrontToBack[] = {kBlue, kBlue, kRed, kRed};
 
+// The closed form of "over" for surfaces listed front to back.
 std::array<double, 4> over(std::span<const Surface> front_to_back) {
-  std::array<double, 4> out{};
-  double clear = 1;
-  for (std::size_t i = 0; i < front_to_back.size(); ++i) {
-    double seen = 1;
-    for (std::size_t j = 0; j < i; ++j) seen *= 1.0 - front_to_back[j].alpha;
-    for (int c = 0; c < 3; ++c)
-      out[c] += double{front_to_back[i].color[c]} * front_to_back[i].alpha * seen;
-    clear *= 1.0 - front_to_back[i].alpha;
-  }
-  out[3] = 1.0 - clear;
-  return out;
+  return ::tetray::testing::over_front_to_back(front_to_back);
 }
 
 // Copy B's tets first (points 8..15, f = z + 1/2), then copy A's (points 0..7, f = z).
