@@ -1,136 +1,13 @@
 #include "render/composite/composite.hpp"
 
-#include <algorithm>
+#include <iterator>
 #include <utility>
-#include <vector>
 
 #include "render/composite/composite_codec.hpp"
-#include "render/composite/composite_plan.hpp"
+#include "render/composite/compositor.hpp"
 
 namespace tetray::render {
 namespace {
-
-// Tags of the compositor's messages: the fold, then one per round, then the final gather. The
-// communicator should be reserved for tetray (the adaptor duplicates the solver's) so that no
-// other message can match them.
-constexpr int kFirstTag = 7700;
-
-struct Outgoing {
-  int peer;
-  PieceMessage message;
-};
-
-// One rank's part of the schedule: its virtual rank (the root is 0), the span it owns and a
-// rectangle known to hold every active pixel of its image.
-class Compositor {
- public:
-  Compositor(Framebuffer& image, MPI_Comm comm, int rank, int root, CompositePlan plan,
-             CompositeStats& stats)
-      : image_(image),
-        comm_(comm),
-        root_(root),
-        virtual_rank_((rank - root + plan.rank_count) % plan.rank_count),
-        plan_(std::move(plan)),
-        stats_(stats),
-        span_{0, static_cast<std::uint32_t>(image.pixel_count())},
-        rect_(active_rect(image)) {}
-
-  int run() {
-    int tag = kFirstTag;
-    if (plan_.folded_count() > 0) {
-      if (int error = fold(tag++); error != MPI_SUCCESS) return error;
-      if (virtual_rank_ >= plan_.swap_count) return MPI_SUCCESS;
-    }
-    for (std::size_t round = 0; round < plan_.radices.size(); ++round) {
-      if (int error = swap(static_cast<int>(round), tag++); error != MPI_SUCCESS) return error;
-    }
-    return gather(tag);
-  }
-
- private:
-  int actual_rank(int virtual_rank) const { return (virtual_rank + root_) % plan_.rank_count; }
-
-  // Ranks past swap_count hand their whole image to a partner among the first ones.
-  int fold(int tag) {
-    std::vector<Outgoing> sends;
-    if (virtual_rank_ >= plan_.swap_count) {
-      sends.push_back({actual_rank(virtual_rank_ - plan_.swap_count), encode(span_)});
-    }
-    return exchange(tag, std::move(sends), virtual_rank_ < plan_.folded_count() ? 1 : 0);
-  }
-
-  // Radix-k round: the group splits the current span into k parts; this rank keeps part
-  // `digit` and sends every other part to the member that keeps it.
-  int swap(int round, int tag) {
-    const int radix = plan_.radices[static_cast<std::size_t>(round)];
-    const RoundPosition position = round_position(plan_, round, virtual_rank_);
-    std::vector<Outgoing> sends;
-    for (int part = 0; part < radix; ++part) {
-      if (part == position.digit) continue;
-      const int peer = virtual_rank_ + (part - position.digit) * position.stride;
-      sends.push_back({actual_rank(peer), encode(split_span(span_, radix, part))});
-    }
-    span_ = split_span(span_, radix, position.digit);
-    return exchange(tag, std::move(sends), radix - 1);
-  }
-
-  // Every span goes to the root. The root's own pixels outside its span need no clearing:
-  // the composited pixel that arrives for each was chosen over it, or is it.
-  int gather(int tag) {
-    if (virtual_rank_ != 0) return exchange(tag, {{root_, encode(span_)}}, 0);
-    return exchange(tag, {}, plan_.swap_count - 1);
-  }
-
-  PieceMessage encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
-
-  // Sends every message, composites the incoming ones in their order of arrival (the result
-  // does not depend on it: wins_over is a total order), then waits for the sends.
-  int exchange(int tag, std::vector<Outgoing> sends, int receive_count) {
-    std::vector<MPI_Request> requests(sends.size(), MPI_REQUEST_NULL);
-    int error = MPI_SUCCESS;
-    for (std::size_t k = 0; k < sends.size() && error == MPI_SUCCESS; ++k) {
-      const PieceMessage& message = sends[k].message;
-      error = MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_UINT32_T,
-                        sends[k].peer, tag, comm_, &requests[k]);
-      stats_.bytes_sent += message.size() * sizeof(std::uint32_t);
-    }
-    for (int k = 0; k < receive_count && error == MPI_SUCCESS; ++k) error = receive(tag);
-    const int wait_error =
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-    return error != MPI_SUCCESS ? error : wait_error;
-  }
-
-  int receive(int tag) {
-    MPI_Message handle;
-    MPI_Status status;
-    if (int error = MPI_Mprobe(MPI_ANY_SOURCE, tag, comm_, &handle, &status);
-        error != MPI_SUCCESS) {
-      return error;
-    }
-    int count = 0;
-    MPI_Get_count(&status, MPI_UINT32_T, &count);
-    buffer_.resize(static_cast<std::size_t>(count));
-    if (int error = MPI_Mrecv(buffer_.data(), count, MPI_UINT32_T, &handle, MPI_STATUS_IGNORE);
-        error != MPI_SUCCESS) {
-      return error;
-    }
-    stats_.bytes_received += buffer_.size() * sizeof(std::uint32_t);
-    const std::optional<PixelRect> piece_rect = composite_piece(image_, buffer_);
-    if (!piece_rect) return MPI_ERR_OTHER;
-    rect_ = united(rect_, *piece_rect);
-    return MPI_SUCCESS;
-  }
-
-  Framebuffer& image_;
-  MPI_Comm comm_;
-  int root_;
-  int virtual_rank_;
-  CompositePlan plan_;
-  CompositeStats& stats_;
-  PixelSpan span_;
-  PixelRect rect_;
-  PieceMessage buffer_;
-};
 
 bool well_formed(const Framebuffer& image) {
   const auto pixels = static_cast<std::int64_t>(image.width) * image.height;
@@ -177,7 +54,7 @@ int composite(Framebuffer& image, MPI_Comm comm, const CompositeOptions& options
   if (error == MPI_SUCCESS && image.pixel_count() > 0) {
     CompositePlan plan = make_plan(rank_count, options.algorithm);
     out.rounds = plan.round_count();
-    error = Compositor(image, comm, rank, options.root, std::move(plan), out).run();
+    error = Compositor<Framebuffer>(image, comm, rank, options.root, std::move(plan), out).run();
   }
   out.seconds = MPI_Wtime() - start;
   return error;

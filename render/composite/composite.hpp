@@ -1,7 +1,8 @@
-// Sort-last depth compositing of RGBA+Z framebuffers across MPI ranks (the only module of
-// render/ that uses MPI). Binary swap for power-of-two rank counts, radix-k otherwise; ranks
-// exchange only their active region, run-length encoded. Ties in depth are broken by the hit
-// key (framebuffer.hpp, wins_over), so the result does not depend on the rank count.
+// Sort-last depth compositing of RGBA+Z framebuffers across MPI ranks. Binary swap for
+// power-of-two rank counts, radix-k otherwise, then the image assembled on the root by a tree
+// (compositor.hpp); ranks exchange only their active region, run-length encoded. Ties in depth
+// are broken by the hit key (framebuffer.hpp, wins_over), so the result does not depend on the
+// rank count.
 #pragma once
 
 #include <mpi.h>
@@ -24,6 +25,9 @@ struct CompositeStats {
   std::uint64_t bytes_sent = 0;      // by this rank
   std::uint64_t bytes_received = 0;  // by this rank
   int rounds = 0;
+  // The most bytes of messages this rank held at once (its sends of a round and the message
+  // being received), beside the image itself: the compositor's memory.
+  std::uint64_t peak_message_bytes = 0;
 };
 
 // Composites `image` (this rank's part, same size on every rank) over `comm`. On return the

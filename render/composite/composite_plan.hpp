@@ -1,4 +1,4 @@
-// Which ranks exchange what, and in how many rounds (the schedule of composite.cpp).
+// Which ranks exchange what, and in how many rounds (the schedule of compositor.hpp).
 //
 // Radix-k (Peterka et al., "A configurable algorithm for parallel image-compositing
 // applications", SC 2009) factors the rank count P = k_1 k_2 ... k_r: in round i the ranks that
@@ -10,6 +10,7 @@
 // whole image and goes straight to the root.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "render/composite/composite.hpp"
@@ -25,9 +26,11 @@ struct CompositePlan {
   std::vector<int> radices;  // k of each round; their product is swap_count
 
   int folded_count() const { return rank_count - swap_count; }
-  // Message rounds of the schedule: the fold (if any), the radix rounds, the final gather.
+  // Message rounds of the schedule: the fold (if any), the radix rounds, then the assembly on
+  // the root: the radix rounds in reverse, or one gather when there were none.
   int round_count() const {
-    return (folded_count() > 0 ? 1 : 0) + static_cast<int>(radices.size()) + 1;
+    const auto rounds = static_cast<int>(radices.size());
+    return (folded_count() > 0 ? 1 : 0) + rounds + std::max(rounds, 1);
   }
 };
 
