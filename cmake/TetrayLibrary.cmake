@@ -30,3 +30,27 @@ function(tetray_folder_library target)
   endif()
   tetray_include_root(${target} ${folder})
 endfunction()
+
+# tetray_render_stage(NAME): the library tetray_render_NAME of render/NAME/, with the compile
+# options every render kernel needs.
+function(tetray_render_stage name)
+  tetray_folder_library(tetray_render_${name})
+  get_target_property(type tetray_render_${name} TYPE)
+  if(type STREQUAL "INTERFACE_LIBRARY")
+    return()
+  endif()
+  # The watertight edge tests rely on exact antisymmetry of products (a*b - c*d == -(c*d - a*b));
+  # fused multiply-add contraction would break it.
+  target_compile_options(tetray_render_${name} PRIVATE -ffp-contract=off)
+  # The renderer never reads errno; without it the compiler may vectorize sqrt (packet set-up).
+  # The results are the same IEEE operations either way.
+  target_compile_options(tetray_render_${name} PRIVATE -fno-math-errno)
+  # GCC 12's AVX-512 headers initialise _mm512_undefined_ps() from itself, which
+  # -Wmaybe-uninitialized reports at every inlined min/max (a known false positive).
+  # At -O1/-O2 with the sanitizers GCC reports the same spot as -Wuninitialized.
+  # (GCC's option: clang, which builds the fuzz targets, has no such warning and would warn of
+  # an unknown option instead.)
+  target_compile_options(tetray_render_${name} PRIVATE
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>
+    $<$<BOOL:${TETRAY_SANITIZE}>:-Wno-uninitialized>)
+endfunction()

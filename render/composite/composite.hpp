@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "render/core/framebuffer.hpp"
 
@@ -28,6 +29,9 @@ struct CompositeStats {
   // The most bytes of messages this rank held at once (its sends of a round and the message
   // being received), beside the image itself: the compositor's memory.
   std::uint64_t peak_message_bytes = 0;
+  // Seconds from the start of the schedule to the end of each of this rank's rounds (fold,
+  // radix rounds, assembly steps), as far as it took part.
+  std::vector<double> round_seconds;
 };
 
 // Composites `image` (this rank's part, same size on every rank) over `comm`. On return the

@@ -24,6 +24,11 @@ inline constexpr std::size_t kPieceHeaderWords = 7;
 inline constexpr std::size_t kRunHeaderWords = 2;
 inline constexpr std::size_t kPixelWords = 6;
 
+// The bytes of a message (the compositor's statistics).
+inline std::uint64_t message_bytes(const PieceMessage& message) {
+  return message.size() * sizeof(std::uint32_t);
+}
+
 // Encodes the active pixels of `span`; `hint` must hold every active pixel of the span (a
 // looser rectangle costs scanning time, never correctness).
 PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);

@@ -7,9 +7,10 @@
 //   Message encode_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
 //   std::size_t Image::pixel_count() const;
+//   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
 //
-// where Message has data(), size() (in 32-bit words) and resize(n), and serves as the receive
-// buffer too.
+// where Message has data(), size() (in 32-bit words, what goes on the wire) and resize(n), and
+// serves as the receive buffer too.
 //
 // Rounds (composite_plan.hpp): the fold, the radix-k rounds, then the assembly of the final
 // image on the root by the same groups in reverse order. In the last radix round each group
@@ -29,6 +30,8 @@
 #include <vector>
 
 #include "render/composite/composite.hpp"
+#include "render/composite/composite_agreement.hpp"
+#include "render/composite/composite_codec.hpp"
 #include "render/composite/composite_plan.hpp"
 #include "render/composite/composite_region.hpp"
 
@@ -47,7 +50,8 @@ class Compositor {
   // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`.
   Compositor(Image& image, MPI_Comm comm, int rank, int root, CompositePlan plan,
              CompositeStats& stats)
-      : image_(image),
+      : start_(MPI_Wtime()),
+        image_(image),
         comm_(comm),
         root_(root),
         virtual_rank_((rank - root + plan.rank_count) % plan.rank_count),
@@ -59,22 +63,30 @@ class Compositor {
   int run() {
     int tag = kFirstCompositeTag;
     if (plan_.folded_count() > 0) {
-      if (int error = fold(tag++); error != MPI_SUCCESS) return error;
+      if (int error = timed(fold(tag++)); error != MPI_SUCCESS) return error;
       if (virtual_rank_ >= plan_.swap_count) return MPI_SUCCESS;
     }
     for (std::size_t round = 0; round < plan_.radices.size(); ++round) {
-      if (int error = swap(static_cast<int>(round), tag++); error != MPI_SUCCESS) return error;
+      if (int error = timed(swap(static_cast<int>(round), tag++)); error != MPI_SUCCESS) {
+        return error;
+      }
     }
-    if (plan_.radices.empty()) return gather(tag);
+    if (plan_.radices.empty()) return timed(gather(tag));
     for (auto round = static_cast<int>(plan_.radices.size()) - 1; round >= 0; --round) {
       bool handed_on = false;
-      if (int error = assemble(round, tag++, handed_on); error != MPI_SUCCESS) return error;
+      if (int error = timed(assemble(round, tag++, handed_on)); error != MPI_SUCCESS) return error;
       if (handed_on) return MPI_SUCCESS;
     }
     return MPI_SUCCESS;
   }
 
  private:
+  // Records when the round that returned `error` ended (CompositeStats::round_seconds).
+  int timed(int error) {
+    stats_.round_seconds.push_back(MPI_Wtime() - start_);
+    return error;
+  }
+
   int actual_rank(int virtual_rank) const { return (virtual_rank + root_) % plan_.rank_count; }
 
   // Ranks past swap_count hand their whole image to a partner among the first ones.
@@ -113,7 +125,7 @@ class Compositor {
     handed_on = position.digit != 0;
     if (handed_on) {
       const int keeper = virtual_rank_ - position.digit * position.stride;
-      return exchange(tag, {{actual_rank(keeper), encode(span_)}}, 0);
+      return exchange(tag, one_send(actual_rank(keeper), encode(span_)), 0);
     }
     span_ = whole;
     return exchange(tag, {}, plan_.radices[static_cast<std::size_t>(round)] - 1);
@@ -121,7 +133,7 @@ class Compositor {
 
   // The plan without rounds: every rank's image goes straight to the root.
   int gather(int tag) {
-    if (virtual_rank_ != 0) return exchange(tag, {{root_, encode(span_)}}, 0);
+    if (virtual_rank_ != 0) return exchange(tag, one_send(root_, encode(span_)), 0);
     return exchange(tag, {}, plan_.swap_count - 1);
   }
 
@@ -129,6 +141,13 @@ class Compositor {
     int peer;
     Message message;
   };
+
+  // (A braced list would copy the message; messages only move.)
+  static std::vector<Outgoing> one_send(int peer, Message message) {
+    std::vector<Outgoing> sends;
+    sends.push_back({peer, std::move(message)});
+    return sends;
+  }
 
   Message encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
 
@@ -142,8 +161,8 @@ class Compositor {
       const Message& message = sends[k].message;
       error = MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_UINT32_T,
                         sends[k].peer, tag, comm_, &requests[k]);
-      stats_.bytes_sent += message.size() * sizeof(std::uint32_t);
-      held += message.size() * sizeof(std::uint32_t);
+      stats_.bytes_sent += message_bytes(message);
+      held += message_bytes(message);
     }
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
     for (int k = 0; k < receive_count && error == MPI_SUCCESS; ++k) error = receive(tag, held);
@@ -154,21 +173,23 @@ class Compositor {
 
   // `held`: bytes of this round's outgoing messages, for the peak of what the rank holds.
   int receive(int tag, std::uint64_t held) {
-    MPI_Message handle;
+    // Probe, then receive from the probed source: messages of one source and tag do not
+    // overtake each other, and only this call receives on the compositor's tags. (Not the
+    // matched MPI_Mprobe: SimGrid's SMPI, which runs this code at scale, lacks it.)
     MPI_Status status;
-    if (int error = MPI_Mprobe(MPI_ANY_SOURCE, tag, comm_, &handle, &status);
-        error != MPI_SUCCESS) {
+    if (int error = MPI_Probe(MPI_ANY_SOURCE, tag, comm_, &status); error != MPI_SUCCESS) {
       return error;
     }
     int count = 0;
     MPI_Get_count(&status, MPI_UINT32_T, &count);
     buffer_.resize(static_cast<std::size_t>(count));
-    const std::uint64_t bytes = std::uint64_t(count) * sizeof(std::uint32_t);
-    stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held + bytes);
-    if (int error = MPI_Mrecv(buffer_.data(), count, MPI_UINT32_T, &handle, MPI_STATUS_IGNORE);
+    if (int error = MPI_Recv(buffer_.data(), count, MPI_UINT32_T, status.MPI_SOURCE, tag, comm_,
+                             MPI_STATUS_IGNORE);
         error != MPI_SUCCESS) {
       return error;
     }
+    const std::uint64_t bytes = message_bytes(buffer_);
+    stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held + bytes);
     stats_.bytes_received += bytes;
     const auto piece_rect =
         composite_piece(image_, std::span<const std::uint32_t>(buffer_.data(), buffer_.size()));
@@ -177,6 +198,7 @@ class Compositor {
     return MPI_SUCCESS;
   }
 
+  double start_;  // first, so that the scan of the constructor counts in round 1
   Image& image_;
   MPI_Comm comm_;
   int root_;
@@ -188,5 +210,26 @@ class Compositor {
   std::vector<PixelSpan> spans_before_round_;  // the span each radix round split
   Message buffer_;
 };
+
+// render::composite for any Image (with width and height): agree, plan, run. `image_ok` says
+// whether this rank's image is well formed.
+template <typename Image>
+int composite_image(Image& image, bool image_ok, MPI_Comm comm, const CompositeOptions& options,
+                    CompositeStats& stats) {
+  stats = {};
+  int rank = 0, rank_count = 1;
+  if (int error = MPI_Comm_size(comm, &rank_count); error != MPI_SUCCESS) return error;
+  if (rank_count == 1) return options.root == 0 ? MPI_SUCCESS : MPI_ERR_ROOT;
+  const double start = MPI_Wtime();
+  MPI_Comm_rank(comm, &rank);
+  int error = agree_on_inputs(image.width, image.height, image_ok, comm, options, rank_count);
+  if (error == MPI_SUCCESS && image.pixel_count() > 0) {
+    CompositePlan plan = make_plan(rank_count, options.algorithm);
+    stats.rounds = plan.round_count();
+    error = Compositor<Image>(image, comm, rank, options.root, std::move(plan), stats).run();
+  }
+  stats.seconds = MPI_Wtime() - start;
+  return error;
+}
 
 }  // namespace tetray::render

@@ -1,0 +1,120 @@
+#include "tools/composite_bench/machine_costs.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "render/composite/composite_codec.hpp"
+#include "tools/composite_bench/bench_images.hpp"
+
+namespace tetray::composite_bench {
+namespace {
+
+using render::Framebuffer;
+
+// One-way time of a message of `bytes` between the two ranks of `pair` (half the round trip).
+double ping_pong(MPI_Comm pair, int rank, std::size_t bytes, int repeat) {
+  std::vector<char> buffer(bytes);
+  const int count = static_cast<int>(bytes);
+  MPI_Barrier(pair);
+  const double start = MPI_Wtime();
+  for (int k = 0; k < repeat; ++k) {
+    if (rank == 0) {
+      MPI_Send(buffer.data(), count, MPI_CHAR, 1, 0, pair);
+      MPI_Recv(buffer.data(), count, MPI_CHAR, 1, 0, pair, MPI_STATUS_IGNORE);
+    } else {
+      MPI_Recv(buffer.data(), count, MPI_CHAR, 0, 0, pair, MPI_STATUS_IGNORE);
+      MPI_Send(buffer.data(), count, MPI_CHAR, 0, 0, pair);
+    }
+  }
+  return (MPI_Wtime() - start) / (2.0 * repeat);
+}
+
+double thread_cpu_seconds() {
+  timespec now{};
+  // In parentheses: the host's own clock, also under SMPI, whose wrapper makes clock_gettime a
+  // macro for the simulated time.
+  (clock_gettime)(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+// CPU time of the best of a few runs: first-touch page faults and other processes sharing the
+// cores (oversubscribed runs) do not count.
+template <typename Work>
+double seconds_of(Work&& work) {
+  double best = INFINITY;
+  for (int run = 0; run < 3; ++run) {
+    const double start = thread_cpu_seconds();
+    work();
+    best = std::min(best, thread_cpu_seconds() - start);
+  }
+  return best;
+}
+
+// The compositor's kernels at `size` squared: the activity scan of a nearly empty image (its
+// worst case), then encoding and compositing a dense piece.
+PixelCosts measure_pixel_costs(int size) {
+  Framebuffer nearly_empty(size, size);
+  nearly_empty.depth.back() = 1.0f;
+  const Framebuffer image = bench_image(Coverage::dense, size, 0, 2);
+  const Framebuffer target = bench_image(Coverage::dense, size, 1, 2);
+  const auto pixels = static_cast<double>(image.pixel_count());
+  const render::PixelSpan all{0, static_cast<std::uint32_t>(image.pixel_count())};
+  const render::PixelRect rect = render::active_rect(image);
+  PixelCosts costs;
+  render::PixelRect scanned;
+  render::PieceMessage message;
+  costs.scan = seconds_of([&] { scanned = render::active_rect(nearly_empty); }) / pixels;
+  costs.encode = seconds_of([&] { message = render::encode_piece(image, all, rect); }) / pixels;
+  Framebuffer composited;
+  double composite_s = INFINITY;
+  for (int run = 0; run < 3; ++run) {
+    composited = target;
+    composite_s =
+        std::min(composite_s, seconds_of([&] { render::composite_piece(composited, message); }));
+  }
+  costs.composite = composite_s / pixels;
+  return costs;
+}
+
+}  // namespace
+
+void sleeping_barrier(MPI_Comm comm) {
+#ifdef TETRAY_SMPI
+  MPI_Barrier(comm);
+#else
+  MPI_Request request;
+  MPI_Ibarrier(comm, &request);
+  int done = 0;
+  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done) {
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+#endif
+}
+
+MachineCosts measure_machine(MPI_Comm world, int size) {
+  int rank = 0;
+  MPI_Comm_rank(world, &rank);
+  MachineCosts costs;
+  MPI_Comm pair;
+  MPI_Comm_split(world, rank < 2 ? 0 : MPI_UNDEFINED, rank, &pair);
+  if (pair != MPI_COMM_NULL) {
+    ping_pong(pair, rank, 8, 1000);  // warm-up
+    costs.latency_s = ping_pong(pair, rank, 8, 20000);
+    constexpr std::size_t kLarge = std::size_t{16} << 20;
+    costs.bandwidth_Bps = static_cast<double>(kLarge) / ping_pong(pair, rank, kLarge, 20);
+    MPI_Comm_free(&pair);
+  }
+  if (rank == 0) costs.pixel = measure_pixel_costs(size);
+  sleeping_barrier(world);
+  double shared[] = {costs.latency_s, costs.bandwidth_Bps, costs.pixel.scan, costs.pixel.encode,
+                     costs.pixel.composite};
+  MPI_Bcast(shared, 5, MPI_DOUBLE, 0, world);
+  return {shared[0], shared[1], {shared[2], shared[3], shared[4]}};
+}
+
+}  // namespace tetray::composite_bench

@@ -1,0 +1,155 @@
+#include "tools/composite_bench/model_image.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#ifdef TETRAY_SMPI
+#include <smpi/smpi.h>
+#endif
+
+#include "render/composite/composite_codec.hpp"
+
+namespace tetray::composite_bench {
+namespace {
+
+constexpr std::size_t kAddressWords = sizeof(ModelPiece*) / sizeof(std::uint32_t);
+
+// The first and last row of `span` and where in them it starts and ends.
+struct SpanRows {
+  int first_row, first_x, last_row, last_x;  // pixels [first_x, width) of the first row ...
+};
+
+SpanRows rows_of(render::PixelSpan span, int width) {
+  const auto w = static_cast<std::uint32_t>(width);
+  return {static_cast<int>(span.begin / w), static_cast<int>(span.begin % w),
+          static_cast<int>((span.end - 1) / w), static_cast<int>((span.end - 1) % w + 1)};
+}
+
+// Pixels of row y of `rect` inside the span.
+int row_pixels(const SpanRows& rows, render::PixelRect rect, int y) {
+  int lo = rect.x0, hi = rect.x1;
+  if (y == rows.first_row) lo = std::max(lo, rows.first_x);
+  if (y == rows.last_row) hi = std::min(hi, rows.last_x);
+  return std::max(0, hi - lo);
+}
+
+// Rows of `rect` the span reaches, [y0, y1]; empty when y0 > y1.
+std::pair<int, int> reached_rows(const SpanRows& rows, render::PixelRect rect) {
+  return {std::max(rect.y0, rows.first_row), std::min(rect.y1 - 1, rows.last_row)};
+}
+
+bool empty_input(render::PixelSpan span, render::PixelRect rect, int width) {
+  return span.size() == 0 || rect.empty() || width <= 0;
+}
+
+}  // namespace
+
+void inject_compute(double seconds) {
+#ifdef TETRAY_SMPI
+  if (seconds > 0) smpi_execute(seconds);
+#else
+  (void)seconds;
+#endif
+}
+
+std::uint64_t pixels_in(render::PixelSpan span, render::PixelRect rect, int width) {
+  if (empty_input(span, rect, width)) return 0;
+  const SpanRows rows = rows_of(span, width);
+  const auto [y0, y1] = reached_rows(rows, rect);
+  if (y0 > y1) return 0;
+  if (y0 == y1) return static_cast<std::uint64_t>(row_pixels(rows, rect, y0));
+  const auto inner = static_cast<std::uint64_t>(y1 - y0 - 1) * (rect.x1 - rect.x0);
+  return inner +
+         static_cast<std::uint64_t>(row_pixels(rows, rect, y0) + row_pixels(rows, rect, y1));
+}
+
+std::uint64_t rows_in(render::PixelSpan span, render::PixelRect rect, int width) {
+  if (empty_input(span, rect, width)) return 0;
+  const SpanRows rows = rows_of(span, width);
+  const auto [y0, y1] = reached_rows(rows, rect);
+  if (y0 > y1) return 0;
+  const auto reached = [&](int y) -> std::uint64_t { return row_pixels(rows, rect, y) > 0; };
+  if (y0 == y1) return reached(y0);
+  return static_cast<std::uint64_t>(y1 - y0 - 1) + reached(y0) + reached(y1);
+}
+
+ModelMessage::ModelMessage(std::unique_ptr<ModelPiece> piece, int byte_scale) {
+  const auto scale = static_cast<std::uint64_t>(std::max(byte_scale, 1));
+  resize(std::max<std::size_t>(kAddressWords, (piece->words + scale - 1) / scale));
+  ModelPiece* address = piece.release();
+  std::memcpy(words_.get(), &address, sizeof address);
+}
+
+void ModelMessage::resize(std::size_t words) {
+  if (words > capacity_) {
+    words_.reset(new std::uint32_t[words]);
+    capacity_ = words;
+  }
+  size_ = words;
+}
+
+std::unique_ptr<ModelPiece> take_piece(std::span<const std::uint32_t> message) {
+  if (message.size() < kAddressWords) return nullptr;
+  ModelPiece* address = nullptr;
+  std::memcpy(&address, message.data(), sizeof address);
+  return std::unique_ptr<ModelPiece>(address);
+}
+
+const ModelPiece& peek_piece(const ModelMessage& message) {
+  ModelPiece* address = nullptr;
+  std::memcpy(&address, message.data(), sizeof address);
+  return *address;
+}
+
+std::uint64_t message_bytes(const ModelMessage& message) {
+  return peek_piece(message).words * sizeof(std::uint32_t);
+}
+
+render::PixelRect active_rect(const ModelImage& image) {
+  inject_compute(static_cast<double>(image.pixel_count()) * image.settings->costs.scan);
+  render::PixelRect rect;
+  for (const render::PixelRect& footprint : image.footprints)
+    rect = render::united(rect, footprint);
+  return rect;
+}
+
+ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint) {
+  auto piece = std::make_unique<ModelPiece>();
+  std::uint64_t runs = 0;
+  render::PixelRect sent_rect;
+  const SpanRows rows = rows_of(span, image.width);
+  for (const render::PixelRect& footprint : image.footprints) {
+    const std::uint64_t pixels = pixels_in(span, footprint, image.width);
+    if (pixels == 0) continue;
+    piece->footprints.push_back(footprint);
+    piece->pixels += pixels;
+    // A footprint as wide as the image is one run; the encoder joins its rows.
+    runs += footprint.x1 - footprint.x0 == image.width ? 1 : rows_in(span, footprint, image.width);
+    const auto [y0, y1] = reached_rows(rows, footprint);
+    sent_rect = render::united(sent_rect, {footprint.x0, y0, footprint.x1, y1 + 1});
+  }
+  piece->rect = sent_rect;
+  piece->words = render::kPieceHeaderWords + render::kRunHeaderWords * runs +
+                 render::kPixelWords * piece->pixels;
+  const PixelCosts& costs = image.settings->costs;
+  const std::uint64_t scanned = pixels_in(span, hint, image.width);
+  inject_compute(static_cast<double>(scanned - std::min(scanned, piece->pixels)) * costs.scan +
+                 static_cast<double>(piece->pixels) * costs.encode);
+  return ModelMessage(std::move(piece), image.settings->byte_scale);
+}
+
+std::optional<render::PixelRect> composite_piece(ModelImage& image,
+                                                 std::span<const std::uint32_t> message) {
+  const std::unique_ptr<ModelPiece> piece = take_piece(message);
+  if (!piece) return std::nullopt;
+  inject_compute(static_cast<double>(piece->pixels) * image.settings->costs.composite);
+  for (const render::PixelRect& footprint : piece->footprints) {
+    if (std::find(image.footprints.begin(), image.footprints.end(), footprint) ==
+        image.footprints.end()) {
+      image.footprints.push_back(footprint);
+    }
+  }
+  return piece->rect;
+}
+
+}  // namespace tetray::composite_bench
