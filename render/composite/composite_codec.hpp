@@ -29,6 +29,16 @@ inline std::uint64_t message_bytes(const PieceMessage& message) {
   return message.size() * sizeof(std::uint32_t);
 }
 
+// The most words a piece of `span` can take: every pixel active in one run.
+inline std::size_t piece_capacity(const Framebuffer&, PixelSpan span) {
+  return kPieceHeaderWords + kRunHeaderWords + kPixelWords * std::size_t{span.size()};
+}
+
+// The bytes of a received piece.
+inline std::uint64_t piece_bytes(const Framebuffer&, std::span<const std::uint32_t> piece) {
+  return piece.size() * sizeof(std::uint32_t);
+}
+
 // Encodes the active pixels of `span`; `hint` must hold every active pixel of the span (a
 // looser rectangle costs scanning time, never correctness).
 PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);

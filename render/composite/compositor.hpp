@@ -8,9 +8,10 @@
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
 //   std::size_t Image::pixel_count() const;
 //   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
+//   std::size_t piece_capacity(const Image&, PixelSpan);   most words a piece of the span takes
+//   std::uint64_t piece_bytes(const Image&, std::span<const std::uint32_t>);   of a received one
 //
-// where Message has data(), size() (in 32-bit words, what goes on the wire) and resize(n), and
-// serves as the receive buffer too.
+// where Message has data() and size() (in 32-bit words, what goes on the wire).
 //
 // Rounds (composite_plan.hpp): the fold, the radix-k rounds, then the assembly of the final
 // image on the root by the same groups in reverse order. In the last radix round each group
@@ -25,6 +26,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -41,6 +43,10 @@ namespace tetray::render {
 // The communicator should be reserved for tetray (the adaptor duplicates the solver's) so that
 // no other message can match them.
 inline constexpr int kFirstCompositeTag = 7700;
+
+// Receives posted at once: a round of radix k expects k - 1 <= 7 pieces; the plain gather's
+// root takes its P - 1 in batches, so that it holds at most this many buffers.
+inline constexpr std::size_t kPostedReceives = 8;
 
 template <typename Image>
 class Compositor {
@@ -92,26 +98,33 @@ class Compositor {
   // Ranks past swap_count hand their whole image to a partner among the first ones.
   int fold(int tag) {
     std::vector<Outgoing> sends;
+    std::vector<Incoming> receives;
     if (virtual_rank_ >= plan_.swap_count) {
       sends.push_back({actual_rank(virtual_rank_ - plan_.swap_count), encode(span_)});
+    } else if (virtual_rank_ < plan_.folded_count()) {
+      receives.push_back({actual_rank(virtual_rank_ + plan_.swap_count), span_});
     }
-    return exchange(tag, std::move(sends), virtual_rank_ < plan_.folded_count() ? 1 : 0);
+    return exchange(tag, std::move(sends), receives);
   }
 
   // Radix-k round: the group splits the current span into k parts; this rank keeps part
-  // `digit` and sends every other part to the member that keeps it.
+  // `digit`, sends every other part to the member that keeps it and receives its own part from
+  // every other member.
   int swap(int round, int tag) {
     const int radix = plan_.radices[static_cast<std::size_t>(round)];
     const RoundPosition position = round_position(plan_, round, virtual_rank_);
+    const PixelSpan kept = split_span(span_, radix, position.digit);
     std::vector<Outgoing> sends;
+    std::vector<Incoming> receives;
     for (int part = 0; part < radix; ++part) {
       if (part == position.digit) continue;
-      const int peer = virtual_rank_ + (part - position.digit) * position.stride;
-      sends.push_back({actual_rank(peer), encode(split_span(span_, radix, part))});
+      const int peer = actual_rank(virtual_rank_ + (part - position.digit) * position.stride);
+      sends.push_back({peer, encode(split_span(span_, radix, part))});
+      receives.push_back({peer, kept});
     }
     spans_before_round_.push_back(span_);
-    span_ = split_span(span_, radix, position.digit);
-    return exchange(tag, std::move(sends), radix - 1);
+    span_ = kept;
+    return exchange(tag, std::move(sends), receives);
   }
 
   // Assembly step of `round`, the rounds taken back in reverse: digit 0 receives its group's
@@ -120,26 +133,54 @@ class Compositor {
   // composited pixel that arrives for each was chosen over it, or is it, and a pixel whose
   // composite is the background was the background here too.
   int assemble(int round, int tag, bool& handed_on) {
+    const int radix = plan_.radices[static_cast<std::size_t>(round)];
     const RoundPosition position = round_position(plan_, round, virtual_rank_);
     const PixelSpan whole = spans_before_round_[static_cast<std::size_t>(round)];
     handed_on = position.digit != 0;
     if (handed_on) {
       const int keeper = virtual_rank_ - position.digit * position.stride;
-      return exchange(tag, one_send(actual_rank(keeper), encode(span_)), 0);
+      return exchange(tag, one_send(actual_rank(keeper), encode(span_)), {});
+    }
+    std::vector<Incoming> receives;
+    for (int part = 1; part < radix; ++part) {
+      receives.push_back(
+          {actual_rank(virtual_rank_ + part * position.stride), split_span(whole, radix, part)});
     }
     span_ = whole;
-    return exchange(tag, {}, plan_.radices[static_cast<std::size_t>(round)] - 1);
+    return exchange(tag, {}, receives);
   }
 
   // The plan without rounds: every rank's image goes straight to the root.
   int gather(int tag) {
-    if (virtual_rank_ != 0) return exchange(tag, one_send(root_, encode(span_)), 0);
-    return exchange(tag, {}, plan_.swap_count - 1);
+    if (virtual_rank_ != 0) return exchange(tag, one_send(root_, encode(span_)), {});
+    std::vector<Incoming> receives;
+    for (int v = 1; v < plan_.swap_count; ++v) receives.push_back({actual_rank(v), span_});
+    return exchange(tag, {}, receives);
   }
 
   struct Outgoing {
     int peer;
     Message message;
+  };
+
+  // A piece this rank expects: from whom, and the span it covers (which bounds its size).
+  struct Incoming {
+    int peer;
+    PixelSpan span;
+  };
+
+  // Room for one incoming piece; grown, never shrunk, and left uninitialised (a receive
+  // overwrites what it uses).
+  struct ReceiveBuffer {
+    std::unique_ptr<std::uint32_t[]> words;
+    std::size_t capacity = 0;
+
+    void reserve(std::size_t count) {
+      if (count > capacity) {
+        words.reset(new std::uint32_t[count]);
+        capacity = count;
+      }
+    }
   };
 
   // (A braced list would copy the message; messages only move.)
@@ -151,51 +192,81 @@ class Compositor {
 
   Message encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
 
-  // Sends every message, composites the incoming ones in their order of arrival (the result
-  // does not depend on it: wins_over is a total order), then waits for the sends.
-  int exchange(int tag, std::vector<Outgoing> sends, int receive_count) {
-    std::vector<MPI_Request> requests(sends.size(), MPI_REQUEST_NULL);
+  // Posts the receives (at most kPostedReceives at a time, each into a buffer as large as its
+  // span allows), sends every message, composites the incoming pieces in their order of arrival
+  // (the result does not depend on it: wins_over is a total order), then waits for the sends.
+  // Receives are posted from known peers rather than probed: a probe polls in SimGrid's SMPI,
+  // whose simulated time it would distort.
+  int exchange(int tag, std::vector<Outgoing> sends, const std::vector<Incoming>& receives) {
+    std::vector<MPI_Request> send_requests(sends.size(), MPI_REQUEST_NULL);
     int error = MPI_SUCCESS;
     std::uint64_t held = 0;
     for (std::size_t k = 0; k < sends.size() && error == MPI_SUCCESS; ++k) {
       const Message& message = sends[k].message;
       error = MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_UINT32_T,
-                        sends[k].peer, tag, comm_, &requests[k]);
+                        sends[k].peer, tag, comm_, &send_requests[k]);
       stats_.bytes_sent += message_bytes(message);
       held += message_bytes(message);
     }
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
-    for (int k = 0; k < receive_count && error == MPI_SUCCESS; ++k) error = receive(tag, held);
-    const int wait_error =
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    for (std::size_t first = 0; first < receives.size() && error == MPI_SUCCESS;
+         first += kPostedReceives) {
+      const std::size_t count = std::min(kPostedReceives, receives.size() - first);
+      error = receive_batch(tag, std::span(receives).subspan(first, count), held);
+    }
+    const int wait_error = MPI_Waitall(static_cast<int>(send_requests.size()), send_requests.data(),
+                                       MPI_STATUSES_IGNORE);
     return error != MPI_SUCCESS ? error : wait_error;
   }
 
   // `held`: bytes of this round's outgoing messages, for the peak of what the rank holds.
-  int receive(int tag, std::uint64_t held) {
-    // Probe, then receive from the probed source: messages of one source and tag do not
-    // overtake each other, and only this call receives on the compositor's tags. (Not the
-    // matched MPI_Mprobe: SimGrid's SMPI, which runs this code at scale, lacks it.)
-    MPI_Status status;
-    if (int error = MPI_Probe(MPI_ANY_SOURCE, tag, comm_, &status); error != MPI_SUCCESS) {
-      return error;
+  int receive_batch(int tag, std::span<const Incoming> receives, std::uint64_t held) {
+    if (buffers_.size() < receives.size()) buffers_.resize(receives.size());
+    std::vector<MPI_Request> requests(receives.size(), MPI_REQUEST_NULL);
+    for (std::size_t k = 0; k < receives.size(); ++k) {
+      ReceiveBuffer& buffer = buffers_[k];
+      buffer.reserve(piece_capacity(image_, receives[k].span));
+      if (int error = MPI_Irecv(buffer.words.get(), static_cast<int>(buffer.capacity), MPI_UINT32_T,
+                                receives[k].peer, tag, comm_, &requests[k]);
+          error != MPI_SUCCESS) {
+        cancel(requests);
+        return error;
+      }
     }
-    int count = 0;
-    MPI_Get_count(&status, MPI_UINT32_T, &count);
-    buffer_.resize(static_cast<std::size_t>(count));
-    if (int error = MPI_Recv(buffer_.data(), count, MPI_UINT32_T, status.MPI_SOURCE, tag, comm_,
-                             MPI_STATUS_IGNORE);
-        error != MPI_SUCCESS) {
-      return error;
+    for (std::size_t done = 0; done < receives.size(); ++done) {
+      int index = MPI_UNDEFINED;
+      MPI_Status status;
+      if (int error =
+              MPI_Waitany(static_cast<int>(requests.size()), requests.data(), &index, &status);
+          error != MPI_SUCCESS || index == MPI_UNDEFINED) {
+        cancel(requests);
+        return error != MPI_SUCCESS ? error : MPI_ERR_REQUEST;
+      }
+      int count = 0;
+      MPI_Get_count(&status, MPI_UINT32_T, &count);
+      const std::span<const std::uint32_t> piece(buffers_[std::size_t(index)].words.get(),
+                                                 static_cast<std::size_t>(count));
+      const std::uint64_t bytes = piece_bytes(image_, piece);
+      held += bytes;
+      stats_.bytes_received += bytes;
+      const auto piece_rect = composite_piece(image_, piece);
+      if (!piece_rect) {
+        cancel(requests);
+        return MPI_ERR_OTHER;
+      }
+      rect_ = united(rect_, *piece_rect);
     }
-    const std::uint64_t bytes = message_bytes(buffer_);
-    stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held + bytes);
-    stats_.bytes_received += bytes;
-    const auto piece_rect =
-        composite_piece(image_, std::span<const std::uint32_t>(buffer_.data(), buffer_.size()));
-    if (!piece_rect) return MPI_ERR_OTHER;
-    rect_ = united(rect_, *piece_rect);
+    stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
     return MPI_SUCCESS;
+  }
+
+  // Cancels and completes the receives still pending after an error, so that no buffer is
+  // written after it is gone.
+  static void cancel(std::vector<MPI_Request>& requests) {
+    for (MPI_Request& request : requests) {
+      if (request != MPI_REQUEST_NULL) MPI_Cancel(&request);
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   }
 
   double start_;  // first, so that the scan of the constructor counts in round 1
@@ -208,7 +279,7 @@ class Compositor {
   PixelSpan span_;
   PixelRect rect_;
   std::vector<PixelSpan> spans_before_round_;  // the span each radix round split
-  Message buffer_;
+  std::vector<ReceiveBuffer> buffers_;
 };
 
 // render::composite for any Image (with width and height): agree, plan, run. `image_ok` says

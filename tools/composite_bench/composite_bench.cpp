@@ -195,12 +195,16 @@ int run(const BenchOptions& options) {
   std::vector<Row> rows;
   for (int ranks : options.rank_counts) {
     if (ranks > world_size) continue;
-    MPI_Comm comm;
-    MPI_Comm_split(MPI_COMM_WORLD, rank < ranks ? 0 : MPI_UNDEFINED, rank, &comm);
+    // The whole job as it is where it is measured whole (the simulator runs one count per job):
+    // a split is a collective whose cost grows steeply with the rank count there.
+    MPI_Comm comm = MPI_COMM_WORLD;
+    if (ranks < world_size) {
+      MPI_Comm_split(MPI_COMM_WORLD, rank < ranks ? 0 : MPI_UNDEFINED, rank, &comm);
+    }
     if (comm != MPI_COMM_NULL) {
       const std::vector<Row> measured = measure_rank_count(ranks, options, settings, comm);
       rows.insert(rows.end(), measured.begin(), measured.end());
-      MPI_Comm_free(&comm);
+      if (comm != MPI_COMM_WORLD) MPI_Comm_free(&comm);
     }
     sleeping_barrier(MPI_COMM_WORLD);
   }

@@ -42,6 +42,12 @@ bool empty_input(render::PixelSpan span, render::PixelRect rect, int width) {
   return span.size() == 0 || rect.empty() || width <= 0;
 }
 
+// Words on the wire for a real message of `words`.
+std::size_t scaled_words(std::uint64_t words, int byte_scale) {
+  const auto scale = static_cast<std::uint64_t>(std::max(byte_scale, 1));
+  return std::max<std::size_t>(kAddressWords, (words + scale - 1) / scale);
+}
+
 }  // namespace
 
 void inject_compute(double seconds) {
@@ -73,19 +79,11 @@ std::uint64_t rows_in(render::PixelSpan span, render::PixelRect rect, int width)
   return static_cast<std::uint64_t>(y1 - y0 - 1) + reached(y0) + reached(y1);
 }
 
-ModelMessage::ModelMessage(std::unique_ptr<ModelPiece> piece, int byte_scale) {
-  const auto scale = static_cast<std::uint64_t>(std::max(byte_scale, 1));
-  resize(std::max<std::size_t>(kAddressWords, (piece->words + scale - 1) / scale));
+ModelMessage::ModelMessage(std::unique_ptr<ModelPiece> piece, int byte_scale)
+    : words_(new std::uint32_t[scaled_words(piece->words, byte_scale)]),
+      size_(scaled_words(piece->words, byte_scale)) {
   ModelPiece* address = piece.release();
   std::memcpy(words_.get(), &address, sizeof address);
-}
-
-void ModelMessage::resize(std::size_t words) {
-  if (words > capacity_) {
-    words_.reset(new std::uint32_t[words]);
-    capacity_ = words;
-  }
-  size_ = words;
 }
 
 std::unique_ptr<ModelPiece> take_piece(std::span<const std::uint32_t> message) {
@@ -95,14 +93,24 @@ std::unique_ptr<ModelPiece> take_piece(std::span<const std::uint32_t> message) {
   return std::unique_ptr<ModelPiece>(address);
 }
 
-const ModelPiece& peek_piece(const ModelMessage& message) {
+const ModelPiece& peek_piece(std::span<const std::uint32_t> message) {
   ModelPiece* address = nullptr;
   std::memcpy(&address, message.data(), sizeof address);
   return *address;
 }
 
 std::uint64_t message_bytes(const ModelMessage& message) {
-  return peek_piece(message).words * sizeof(std::uint32_t);
+  return peek_piece({message.data(), message.size()}).words * sizeof(std::uint32_t);
+}
+
+std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span) {
+  return scaled_words(render::kPieceHeaderWords + render::kRunHeaderWords +
+                          render::kPixelWords * std::uint64_t{span.size()},
+                      image.settings->byte_scale);
+}
+
+std::uint64_t piece_bytes(const ModelImage&, std::span<const std::uint32_t> piece) {
+  return peek_piece(piece).words * sizeof(std::uint32_t);
 }
 
 render::PixelRect active_rect(const ModelImage& image) {
@@ -129,8 +137,13 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
     sent_rect = render::united(sent_rect, {footprint.x0, y0, footprint.x1, y1 + 1});
   }
   piece->rect = sent_rect;
-  piece->words = render::kPieceHeaderWords + render::kRunHeaderWords * runs +
-                 render::kPixelWords * piece->pixels;
+  // Runs of neighbouring footprints in one row are joined by the encoder and counted apart
+  // here; no real piece exceeds one run per pixel row of the span, nor the span's capacity.
+  piece->words = std::min<std::uint64_t>(render::kPieceHeaderWords +
+                                             render::kRunHeaderWords * runs +
+                                             render::kPixelWords * piece->pixels,
+                                         render::kPieceHeaderWords + render::kRunHeaderWords +
+                                             render::kPixelWords * std::uint64_t{span.size()});
   const PixelCosts& costs = image.settings->costs;
   const std::uint64_t scanned = pixels_in(span, hint, image.width);
   inject_compute(static_cast<double>(scanned - std::min(scanned, piece->pixels)) * costs.scan +

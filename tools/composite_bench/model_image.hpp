@@ -54,18 +54,15 @@ class ModelMessage {
   std::uint32_t* data() { return words_.get(); }
   const std::uint32_t* data() const { return words_.get(); }
   std::size_t size() const { return size_; }
-  // Room for `words` words; their contents are not initialised (a receive overwrites them).
-  void resize(std::size_t words);
 
  private:
   std::unique_ptr<std::uint32_t[]> words_;
   std::size_t size_ = 0;
-  std::size_t capacity_ = 0;
 };
 
 // The piece a message carries; the receiver takes it over once.
 std::unique_ptr<ModelPiece> take_piece(std::span<const std::uint32_t> message);
-const ModelPiece& peek_piece(const ModelMessage& message);
+const ModelPiece& peek_piece(std::span<const std::uint32_t> message);
 
 struct ModelSettings {
   PixelCosts costs;
@@ -87,6 +84,8 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message);
 std::uint64_t message_bytes(const ModelMessage& message);
+std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span);
+std::uint64_t piece_bytes(const ModelImage& image, std::span<const std::uint32_t> piece);
 
 // Pixels of `rect` whose linear index (row-major, `width` per row) lies in `span`.
 std::uint64_t pixels_in(render::PixelSpan span, render::PixelRect rect, int width);
