@@ -3,8 +3,9 @@
 # its exit code and output, and, for a run that should succeed, every file docs/architecture.md
 # §3 says it owes, for each scene of the config and each step the trigger picks: <out>/<scene>/<scene>_<step, 6 digits>.png (SIZE x SIZE) and .exr and nothing
 # else there, one row in <out>/<scene>.cdb/data.csv naming both, one row in <out>/tetray_log.csv,
-# and the pixels of the first skin image (SKIN_CHECK); and its last line: the wall time and the
-# time tetray blocked the run, with blocked <= wall and the percentage their ratio.
+# and the pixels of the first skin image (SKIN_CHECK); with REFERENCE_DIR (the output directory of
+# another run), each image file byte for byte equal to that run's; and its last line: the wall
+# time and the time tetray blocked the run, with blocked <= wall and the percentage their ratio.
 # A refused run must write no image. Every failed check is listed, then the test fails.
 cmake_minimum_required(VERSION 3.25)
 set(failures "")
@@ -71,6 +72,21 @@ macro(check_exr path)
   endif()
 endmacro()
 
+# The file `image` (relative to the output directory) holds the bytes of the reference run's.
+function(expect_reference_bytes image)
+  set(reference ${REFERENCE_DIR}/${image})
+  if(NOT EXISTS ${reference})
+    fail("${reference}: missing (the reference run failed or did not run)")
+  else()
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT_DIR}/${image} ${reference}
+      RESULT_VARIABLE differ)
+    if(NOT differ EQUAL 0)
+      fail("${OUT_DIR}/${image}: not the bytes of ${reference}")
+    endif()
+  endif()
+  set(failures ${failures} PARENT_SCOPE)
+endfunction()
+
 function(check_outputs)
   file(STRINGS ${CONFIG} scenes REGEX "^ *- name: ")
   list(TRANSFORM scenes REPLACE "^ *- name: *" "")
@@ -99,6 +115,10 @@ function(check_outputs)
       if(EXISTS ${OUT_DIR}/${image}.png AND EXISTS ${OUT_DIR}/${image}.exr)
         check_png(${OUT_DIR}/${image}.png)
         check_exr(${OUT_DIR}/${image}.exr)
+        if(REFERENCE_DIR)
+          expect_reference_bytes(${image}.png)
+          expect_reference_bytes(${image}.exr)
+        endif()
       else()
         fail("${OUT_DIR}/${image}.png and .exr: missing")
       endif()
@@ -143,10 +163,9 @@ function(check_blocked_line text)
 endfunction()
 
 file(REMOVE_RECURSE ${OUT_DIR})  # files of an earlier run must not pass the checks
-# The launch flags of tetray_add_mpi_test (tests/CMakeLists.txt).
+# MPI_FLAGS: the launch flags of tetray_add_mpi_test (TETRAY_MPIEXEC_FLAGS, tests/CMakeLists.txt).
 execute_process(
-  COMMAND ${MPIEXEC} ${NUMPROC_FLAG} ${NP} --oversubscribe --allow-run-as-root ${WRAPPER} ${EXE}
-          ${CONFIG}
+  COMMAND ${MPIEXEC} ${NUMPROC_FLAG} ${NP} ${MPI_FLAGS} ${WRAPPER} ${EXE} ${CONFIG}
   RESULT_VARIABLE code OUTPUT_VARIABLE output ERROR_VARIABLE output)
 message("${output}")
 if(NOT code STREQUAL EXIT_CODE)
@@ -160,8 +179,9 @@ endforeach()
 if(EXIT_CODE EQUAL 0)
   check_outputs()
   check_blocked_line("${output}")
-  # SKIN_CHECK: the command that checks the first skin image against the beam's geometry.
-  if(DEFINED SKIN_CHECK)
+  # SKIN_CHECK: the command that checks the first skin image against the beam's geometry, empty
+  # for a beam without interior points.
+  if(SKIN_CHECK)
     execute_process(COMMAND ${SKIN_CHECK} RESULT_VARIABLE skin_code OUTPUT_VARIABLE skin_output
       ERROR_VARIABLE skin_output)
     message("${skin_output}")
