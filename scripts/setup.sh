@@ -28,11 +28,12 @@ demo_packages=(
 # The rest: the VTK bridge and the tools' VTK files (VTK alone is about 400 packages), movies
 # (FFmpeg), the benchmarks' peers (Embree, VTK's renderers), the tests (GoogleTest, Chromium for
 # the viewer page, DOLFINx, the Python package and its checks, QEMU's user mode for a CPU without
-# x86-64-v2), the fuzzers (clang), formatting.
+# x86-64-v2), the fuzzers (clang), formatting, and SimGrid's SMPI, in which the compositor runs
+# at thousands of simulated ranks (scripts/scaling.sh; a test checks it against real runs).
 test_packages=(
   git clang-format libvtk9-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libjsoncpp-dev python3-imath
-  clang libclang-rt-14-dev qemu-user
+  clang libclang-rt-14-dev qemu-user libsimgrid-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
   chromium python3-matplotlib python3-pil xvfb xauth libgl1-mesa-dri
 )

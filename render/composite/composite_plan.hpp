@@ -34,7 +34,7 @@ struct CompositePlan {
   }
 };
 
-// `algorithm` automatic picks binary swap for a power of two and radix-k otherwise.
+// `algorithm` automatic is radix-k (composite_plan.cpp says why).
 CompositePlan make_plan(int rank_count, CompositeAlgorithm algorithm);
 
 // The digit of `virtual_rank` in round `round` and the distance between group members.

@@ -2,6 +2,7 @@
 
 #include <cinttypes>
 #include <cstdio>
+#include <string>
 
 #include "tools/bench_common/json_file.hpp"
 
@@ -15,20 +16,27 @@ void print_costs(const MachineCosts& c) {
 }
 
 void print_rows(const std::vector<Row>& rows) {
-  std::printf("\n%6s %6s %-7s %-12s %-5s %6s %10s %10s %11s %12s %9s %9s\n", "P", "size", "mode",
-              "algorithm", "image", "rounds", "median ms", "min ms", "sent max MB", "moved mean MB",
-              "mean/bnd", "msg B/px");
+  std::printf("\n%6s %6s %-7s %-12s %-5s %6s %10s %10s %10s %11s %12s %9s %9s\n", "P", "size",
+              "mode", "algorithm", "image", "rounds", "median ms", "rounds ms", "assembly",
+              "sent max MB", "moved mean MB", "mean/bnd", "msg B/px");
   for (const Row& r : rows) {
-    std::printf("%6d %6d %-7s %-12s %-5s %6d %10.3f %10.3f %11.2f %12.2f %9.3f %9.2f\n", r.ranks,
-                r.size, r.coverage.c_str(), r.algorithm.c_str(), r.model ? "model" : "real",
-                r.rounds, r.median_ms, r.min_ms, r.sent_max / 1e6, r.moved_mean / 1e6,
-                r.moved_mean / r.bound, r.message_bytes_per_pixel);
+    std::printf("%6d %6d %-7s %-12s %-5s %6d %10.3f %10.3f %10.3f %11.2f %12.2f %9.3f %9.2f\n",
+                r.ranks, r.size, r.coverage.c_str(), r.algorithm.c_str(),
+                r.model ? "model" : "real", r.rounds, r.median_ms, r.composite_ms, r.assembly_ms,
+                r.sent_max / 1e6, r.moved_mean / 1e6, r.moved_mean / r.bound,
+                r.message_bytes_per_pixel);
   }
   for (const Row& r : rows) {
     if (r.model) continue;
     std::printf("image hash P=%d size=%d %s %s: %016" PRIx64 "\n", r.ranks, r.size,
                 r.coverage.c_str(), r.algorithm.c_str(), r.root_image_hash);
   }
+}
+
+std::string hex(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016" PRIx64, value);
+  return text;
 }
 
 bool write_json(const std::string& path, const std::vector<Row>& rows, const MachineCosts& c) {
@@ -50,6 +58,8 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     run["rounds"] = r.rounds;
     run["median_ms"] = number(r.median_ms);
     run["min_ms"] = number(r.min_ms);
+    run["composite_ms"] = number(r.composite_ms);
+    run["assembly_ms"] = number(r.assembly_ms);
     run["round_end_ms"] = Json::Value(Json::arrayValue);
     for (double t : r.round_end_ms) run["round_end_ms"].append(number(t));
     run["sent_max_bytes"] = number(r.sent_max);
@@ -57,7 +67,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     run["moved_max_bytes"] = number(r.moved_max);
     run["bound_bytes"] = number(r.bound);
     run["message_bytes_per_pixel"] = number(r.message_bytes_per_pixel);
-    if (!r.model) run["root_image_hash"] = bench::count(r.root_image_hash);
+    if (!r.model) run["root_image_hash"] = hex(r.root_image_hash);
     json["runs"].append(run);
   }
   return bench::write_json_file(json, path);

@@ -20,6 +20,9 @@ struct Row {
   // The slowest rank's time at the end of each round of the median run (fold, radix rounds,
   // assembly steps): time per round is the difference of neighbours.
   std::vector<double> round_end_ms;
+  // Of the median run: compositing proper (to the end of the last radix round, the image then
+  // spread over the ranks in spans), and the assembly of the image on the root after it.
+  double composite_ms = 0, assembly_ms = 0;
   double sent_max = 0, moved_mean = 0, moved_max = 0;  // bytes per rank; moved = sent + received
   double bound = 0;                                    // 2 (1 - 1/P) x image bytes
   // The most message bytes a rank held at once, per pixel of the image (the image itself holds

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "render/composite/composite.hpp"
+#include "render/composite/composite_plan.hpp"
 #include "render/composite/compositor.hpp"
 #include "tools/composite_bench/bench_images.hpp"
 #include "tools/composite_bench/bench_rows.hpp"
@@ -133,6 +134,11 @@ Row measure(Run& run, int size, MPI_Comm comm, CompositeAlgorithm algorithm, int
   row.min_ms = *std::min_element(times.begin(), times.end());
   const auto median_run = std::find(times.begin(), times.end(), row.median_ms) - times.begin();
   row.round_end_ms = round_ends[static_cast<std::size_t>(median_run)];
+  // The fold and the radix rounds come first; the rest assemble the image on the root.
+  const render::CompositePlan plan = render::make_plan(ranks, algorithm);
+  const std::size_t proper = (plan.folded_count() > 0 ? 1 : 0) + plan.radices.size();
+  row.composite_ms = proper == 0 ? 0.0 : row.round_end_ms[proper - 1];
+  row.assembly_ms = row.median_ms - row.composite_ms;
   row.sent_max = maxima[0];
   row.moved_max = maxima[1];
   row.message_bytes_per_pixel = maxima[2];

@@ -33,11 +33,14 @@ TEST(CompositePlan, RoundsCoverTheTakingPartRanksForEveryCount) {
   }
 }
 
-TEST(CompositePlan, AutomaticIsBinarySwapForPowersOfTwoAndFoldsNothingForSmoothCounts) {
-  for (int ranks : {2, 4, 8, 64, 1024, 16384}) {
+TEST(CompositePlan, AutomaticIsRadixKWithRadicesOfAtMostEightAndFoldsNothingForSmoothCounts) {
+  // Powers of two: as many radices of 8 as fit, the rest in one smaller radix.
+  for (int ranks : {2, 4, 8, 64, 1024, 4096, 16384}) {
     const CompositePlan plan = make_plan(ranks, CompositeAlgorithm::automatic);
-    EXPECT_EQ(plan.radices,
-              std::vector<int>(static_cast<std::size_t>(std::countr_zero(unsigned(ranks))), 2));
+    const int log2 = std::countr_zero(unsigned(ranks));
+    std::vector<int> expected(static_cast<std::size_t>(log2 / 3), 8);
+    if (log2 % 3 != 0) expected.push_back(1 << (log2 % 3));
+    EXPECT_EQ(plan.radices, expected) << ranks;
     EXPECT_EQ(plan.folded_count(), 0);
   }
   for (int ranks : {3, 5, 6, 7, 12, 1000}) {
@@ -45,6 +48,7 @@ TEST(CompositePlan, AutomaticIsBinarySwapForPowersOfTwoAndFoldsNothingForSmoothC
   }
   EXPECT_EQ(make_plan(11, CompositeAlgorithm::automatic).swap_count, 10);
   EXPECT_EQ(make_plan(5, CompositeAlgorithm::binary_swap).swap_count, 4);
+  EXPECT_EQ(make_plan(16, CompositeAlgorithm::binary_swap).radices, std::vector<int>(4, 2));
 }
 
 TEST(CompositePlan, GatherHasNoRoundsBeforeTheFinalOne) {

@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# The compositor at thousands of ranks in SimGrid's SMPI (docs/scaling.md). Builds the
+# compositor and tetray-composite-bench with smpicxx into build-smpi/ (-DTETRAY_SMPI=ON), next to
+# the normal build's bench in build/ (scripts/setup.sh), then
+#   scripts/scaling.sh calibrate   real mpirun against the simulator of this machine at 2, 4 and 8
+#                                  ranks: times per round and total, and the root images' hashes
+#   scripts/scaling.sh sweep       16 to 4,096 ranks (and past, where noted) on the cluster and
+#                                  Blue Gene/P platforms: sweep.csv and sweep.png
+#   scripts/scaling.sh point PLATFORM RANKS [bench options...]   one simulated run
+# Results go to out/scaling/ (TETRAY_SCALING_OUT). Every simulated figure is deterministic: one
+# run each.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${TETRAY_SCALING_OUT:-out/scaling}
+platforms=tools/composite_bench/platforms
+mkdir -p "$out/hosts"
+
+mpi_flags=(--oversubscribe --mca mpi_yield_when_idle 1)
+[ "$(id -u)" -eq 0 ] && mpi_flags+=(--allow-run-as-root)
+
+build_smpi() {
+  if [ ! -f build-smpi/build.ninja ]; then
+    cmake -S . -B build-smpi -G Ninja -DCMAKE_BUILD_TYPE=Release -DTETRAY_SMPI=ON \
+      -DCMAKE_CXX_COMPILER=smpicxx -DTETRAY_WARNINGS_AS_ERRORS=ON >/dev/null
+  fi
+  cmake --build build-smpi >/dev/null
+  [ -x build/bin/tetray-composite-bench ] || cmake --build build --target tetray-composite-bench
+}
+
+# hostfile NAME PREFIX NODES PER_NODE: every slot of the platform, ranks filling nodes in order.
+hostfile() {
+  local file=$out/hosts/$1.txt
+  [ -f "$file" ] || python3 -c "
+import sys
+prefix, nodes, per = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+sys.stdout.write(''.join(f'{prefix}{n}\n' for n in range(nodes) for _ in range(per)))" \
+    "$2" "$3" "$4" >"$file"
+  echo "$file"
+}
+
+# The per-pixel costs of this machine's kernels (scan, encode, composite, copy, in ns), measured
+# once by the normal build on 2 ranks; the model images inject them.
+costs() {
+  local file=$out/costs.json
+  [ -f "$file" ] || mpirun -np 2 "${mpi_flags[@]}" build/bin/tetray-composite-bench --sizes 64 \
+    --ranks 2 --repeat 1 --cost-size 2048 --json "$file" >/dev/null
+  python3 -c "
+import json, sys
+c = json.load(open(sys.argv[1]))
+print(' '.join(str(c[k]) for k in ('scan_ns_per_pixel', 'encode_ns_per_pixel',
+                                   'composite_ns_per_pixel', 'copy_ns_per_pixel') if k in c))" "$file"
+}
+
+# simulate PLATFORM RANKS JSON [bench options]: one run of the simulator's bench.
+# -no-privatize: the compositor and the bench keep no per-rank global state. Sends are never
+# detached: SMPI keeps detached sends in a list that every later call scans, so that host time
+# grows with the square of the ranks; the simulated sends become rendezvous, as MPI's large
+# messages are. A model run with --byte-scale S divides the bandwidth by S (smpi/bw-factor, after
+# the platform's own settings, which it overrides).
+simulate() {
+  local platform=$1 ranks=$2 json=$3
+  shift 3
+  local hosts
+  case $platform in
+    this_machine) hosts=$(hostfile this_machine here 1 32768) ;;
+    cluster) hosts=$(hostfile cluster node- 4096 8) ;;
+    bluegene_p) hosts=$(hostfile bluegene_p bgp- 8192 4) ;;
+    *) echo "unknown platform $platform" >&2; exit 2 ;;
+  esac
+  local settings=()
+  while read -r line; do
+    [[ -z $line || $line == \#* ]] || settings+=("--cfg=$line")
+  done <"$platforms/$platform.cfg"
+  local scale=1 args=("$@")
+  for ((k = 0; k < ${#args[@]}; ++k)); do
+    [ "${args[k]}" = --byte-scale ] && scale=${args[k + 1]}
+  done
+  [ "$scale" = 1 ] || settings+=("--cfg=smpi/bw-factor:0:$(python3 -c "print(1/$scale)")")
+  smpirun -no-privatize -np "$ranks" -hostfile "$hosts" -platform "$platforms/$platform.xml" \
+    --cfg=smpi/host-speed:1Gf --cfg=smpi/send-is-detached-thresh:0 "${settings[@]}" \
+    build-smpi/bin/tetray-composite-bench --ranks "$ranks" --repeat 1 --json "$json" "$@" \
+    2> >(grep -v '^\[' >&2)
+}
+
+calibrate() {
+  local sizes=(1024 2048)
+  for ranks in 2 4 8; do
+    echo "== $ranks ranks: real mpirun, then the simulator of this machine"
+    mpirun -np "$ranks" "${mpi_flags[@]}" build/bin/tetray-composite-bench --sizes "${sizes[@]}" \
+      --ranks "$ranks" --repeat 5 --json "$out/real_$ranks.json" | tail -n +4
+    simulate this_machine "$ranks" "$out/sim_$ranks.json" --sizes "${sizes[@]}" | tail -n +4
+  done
+  python3 scripts/scaling_report.py calibration "$out" >"$out/calibration.csv"
+  column -s, -t <"$out/calibration.csv"
+}
+
+sweep() {
+  local model=(--model --costs-ns $(costs) --coverage sparse)
+  for platform in cluster bluegene_p; do
+    for ranks in 16 64 256 1024 4096; do
+      simulate "$platform" "$ranks" "$out/${platform}_${ranks}_sparse.json" "${model[@]}" \
+        --sizes 1024 2048 8192 --byte-scale 64 --algorithms binary_swap radix_k automatic \
+        >/dev/null
+      [ "$platform" = cluster ] && simulate cluster "$ranks" "$out/cluster_${ranks}_dense.json" \
+        --model --costs-ns $(costs) --coverage dense --sizes 1024 2048 --byte-scale 64 \
+        --algorithms binary_swap radix_k automatic >/dev/null
+      echo "$platform $ranks done"
+    done
+  done
+  python3 scripts/scaling_report.py sweep "$out" >"$out/sweep.csv"
+  python3 scripts/scaling_report.py plot "$out"
+}
+
+case "${1:-}" in
+  calibrate) build_smpi; calibrate ;;
+  sweep) build_smpi; sweep ;;
+  point) build_smpi; shift; platform=$1 ranks=$2; shift 2
+         simulate "$platform" "$ranks" "$out/point.json" "$@" ;;
+  *) sed -n '2,11p' "$0" >&2; exit 2 ;;
+esac
