@@ -9,6 +9,7 @@
 #include "render/parallel/scene_layers.hpp"
 #include "render/parallel/scene_shadows.hpp"
 #include "render/parallel/step_reductions.hpp"
+#include "render/scene/screen_bound.hpp"
 
 namespace tetray {
 namespace {
@@ -70,6 +71,22 @@ Status Adaptor::Impl::composite_and_submit_view(SceneState& s, std::size_t k, st
   return Status::success();
 }
 
+// Where this rank's hits of a view can be: the screen bound of its volume's box (nothing when
+// the box reaches behind the eye, then the compositor scans the whole image); an empty rectangle
+// for a rank without tets. The image holds only this rank's trace of its tets and their cap.
+std::optional<render::PixelRect> Adaptor::Impl::active_hint(const SceneState& s, std::size_t k,
+                                                            std::size_t v) const {
+  const FieldVolume& volume = volumes_[s.volume];
+  if (volume.bvh().empty()) return render::PixelRect{};
+  const render::Bounds4& b = volume.bvh().nodes[0].bounds;
+  const render::Vec3d origin = volume.volume().origin;
+  const render::Vec3d lo{origin.x + b.lo[0], origin.y + b.lo[1], origin.z + b.lo[2]};
+  const render::Vec3d hi{origin.x + b.hi[0], origin.y + b.hi[1], origin.z + b.hi[2]};
+  const std::optional<render::ScreenRect> rect = render::screen_bound(view_camera(s, k, v), lo, hi);
+  if (!rect) return std::nullopt;
+  return render::PixelRect{rect->x0, rect->y0, rect->x1, rect->y1};
+}
+
 // Collective. An MPI error is returned; a failure of this rank alone in the shadows goes to
 // `local_failure`, since the other scenes' collectives still need this rank.
 Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v,
@@ -81,7 +98,8 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
     const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
     const int rc = s.config.volume
                        ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
-                       : render::composite(image, comm_.comm, {.root = writer});
+                       : render::composite(image, comm_.comm,
+                                           {.root = writer, .active_hint = active_hint(s, k, v)});
     if (rc != MPI_SUCCESS) {
       return {StatusCode::mpi_error,
               "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};

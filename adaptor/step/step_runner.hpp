@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@
 #include "adaptor/step/probes.hpp"
 #include "adaptor/step/scene_state.hpp"
 #include "adaptor/step/volume_scene.hpp"
+#include "render/composite/composite_region.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/parallel/global_reduce.hpp"
 #include "render/parallel/shared_gradients.hpp"
@@ -131,6 +133,8 @@ class Adaptor::Impl {
                                    const SceneCounters& sums, std::uint64_t rss,
                                    Status& local_failure);
   Status composite_view(SceneState& s, std::size_t k, std::size_t v, Status& local_failure);
+  std::optional<render::PixelRect> active_hint(const SceneState& s, std::size_t k,
+                                               std::size_t v) const;
   Status composite_layered_view(SceneState& s, std::size_t k, std::size_t v, Status& local_failure);
 
   // output_hand_off.cpp

@@ -8,8 +8,10 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "render/composite/composite_region.hpp"
 #include "render/core/framebuffer.hpp"
 
 namespace tetray::render {
@@ -19,6 +21,10 @@ enum class CompositeAlgorithm { automatic, binary_swap, radix_k, gather };
 struct CompositeOptions {
   CompositeAlgorithm algorithm = CompositeAlgorithm::automatic;
   int root = 0;  // the rank that receives the final image
+  // A rectangle this rank knows holds all its active pixels (the screen bound of its part of
+  // the mesh): only it is scanned for them, instead of the whole image, whose scan is the
+  // largest cost of a rank that covers little of a large image. Per rank; unset: the image.
+  std::optional<PixelRect> active_hint;
 };
 
 struct CompositeStats {

@@ -37,7 +37,16 @@ struct PixelRect {
 // The smallest rectangle holding both.
 PixelRect united(PixelRect a, PixelRect b);
 
+// The smallest rectangle holding every active pixel of `image` inside `within` (clipped to the
+// image); only `within` is scanned.
+PixelRect active_rect(const Framebuffer& image, PixelRect within);
+
+// The whole image as a rectangle.
+inline PixelRect image_rect(const Framebuffer& image) { return {0, 0, image.width, image.height}; }
+
 // The smallest rectangle holding every active pixel of `image`.
-PixelRect active_rect(const Framebuffer& image);
+inline PixelRect active_rect(const Framebuffer& image) {
+  return active_rect(image, image_rect(image));
+}
 
 }  // namespace tetray::render

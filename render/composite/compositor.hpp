@@ -3,7 +3,8 @@
 // know where their active pixels are (tools/composite_bench/). An `Image` provides, found by
 // argument-dependent lookup:
 //
-//   PixelRect active_rect(const Image&);                    every active pixel lies inside
+//   PixelRect active_rect(const Image&, PixelRect within);   of the active pixels within
+//   PixelRect image_rect(const Image&);                      the whole image
 //   Message encode_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
 //   std::size_t Image::pixel_count() const;
@@ -54,17 +55,17 @@ class Compositor {
   using Message = decltype(encode_piece(std::declval<const Image&>(), PixelSpan{}, PixelRect{}));
 
   // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`.
-  Compositor(Image& image, MPI_Comm comm, int rank, int root, CompositePlan plan,
-             CompositeStats& stats)
+  Compositor(Image& image, MPI_Comm comm, int rank, const CompositeOptions& options,
+             CompositePlan plan, CompositeStats& stats)
       : start_(MPI_Wtime()),
         image_(image),
         comm_(comm),
-        root_(root),
-        virtual_rank_((rank - root + plan.rank_count) % plan.rank_count),
+        root_(options.root),
+        virtual_rank_((rank - options.root + plan.rank_count) % plan.rank_count),
         plan_(std::move(plan)),
         stats_(stats),
         span_{0, static_cast<std::uint32_t>(image.pixel_count())},
-        rect_(active_rect(image)) {}
+        rect_(active_rect(image, options.active_hint.value_or(image_rect(image)))) {}
 
   int run() {
     int tag = kFirstCompositeTag;
@@ -297,7 +298,7 @@ int composite_image(Image& image, bool image_ok, MPI_Comm comm, const CompositeO
   if (error == MPI_SUCCESS && image.pixel_count() > 0) {
     CompositePlan plan = make_plan(rank_count, options.algorithm);
     stats.rounds = plan.round_count();
-    error = Compositor<Image>(image, comm, rank, options.root, std::move(plan), stats).run();
+    error = Compositor<Image>(image, comm, rank, options, std::move(plan), stats).run();
   }
   stats.seconds = MPI_Wtime() - start;
   return error;

@@ -19,7 +19,7 @@ ProtocolStatus shadow_across_ranks(Framebuffer& image, std::vector<Framebuffer>&
   const bool split = place.size > 1;
   if (split) {
     for (Framebuffer& term : terms) {
-      const CompositeOptions options{.root = writer};
+      const CompositeOptions options{.root = writer, .active_hint = {}};
       if (const int rc = composite(term, comm, options); rc != MPI_SUCCESS)
         return mpi_failure("compositing a shadowing light's term", rc);
     }

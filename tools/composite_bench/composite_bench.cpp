@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,7 @@ struct BenchOptions {
       CompositeAlgorithm::binary_swap, CompositeAlgorithm::radix_k, CompositeAlgorithm::gather};
   int repeat = 5;
   bool model = false;
+  bool hint = true;
   int byte_scale = 1;
   std::vector<double> costs_ns;  // scan, encode, composite; measured when empty
   int cost_size = 1024;
@@ -73,20 +75,23 @@ double median(std::vector<double> values) {
 }
 
 // One composite of a fresh copy of this rank's image; the stats of this rank.
+// `hint`: the rank's footprint, as the adaptor passes the screen bound of its mesh.
 struct RealImage {
   const render::Framebuffer& image;
+  std::optional<render::PixelRect> hint;
   render::Framebuffer last;  // the result of the last run (the root's image)
   int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
     last = image;
-    return render::composite(last, comm, {algorithm, 0}, &stats);
+    return render::composite(last, comm, {algorithm, 0, hint}, &stats);
   }
 };
 
 struct ModelRun {
   ModelImage image;
+  std::optional<render::PixelRect> hint;
   int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
     ModelImage copy = image;
-    return render::composite_image(copy, true, comm, {algorithm, 0}, stats);
+    return render::composite_image(copy, true, comm, {algorithm, 0, hint}, stats);
   }
 };
 
@@ -155,12 +160,15 @@ std::vector<Row> measure_rank_count(int ranks, const BenchOptions& options,
   for (int size : options.sizes) {
     for (Coverage coverage : options.coverages) {
       for (CompositeAlgorithm algorithm : options.algorithms) {
+        const render::PixelRect covered = footprint(coverage, size, rank, ranks);
+        std::optional<render::PixelRect> hint;
+        if (options.hint) hint = covered;
         if (options.model) {
-          ModelRun run{{size, size, {footprint(coverage, size, rank, ranks)}, &settings}};
+          ModelRun run{{size, size, {covered}, &settings}, hint};
           rows.push_back(measure(run, size, comm, algorithm, options.repeat));
         } else {
           const render::Framebuffer image = bench_image(coverage, size, rank, ranks);
-          RealImage run{image, {}};
+          RealImage run{image, hint, {}};
           rows.push_back(measure(run, size, comm, algorithm, options.repeat));
           rows.back().root_image_hash = rank == 0 ? image_hash(run.last) : 0;
         }
@@ -245,6 +253,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   app.add_flag("--model", options.model,
                "composite model images (where the pixels are, costs injected): for the simulator");
+  app.add_flag("--hint,!--no-hint", options.hint,
+               "tell the compositor each rank's footprint (default), as the adaptor does");
   app.add_option("--byte-scale", options.byte_scale,
                  "model messages this many times shorter on the wire (divide the bandwidth alike)")
       ->check(CLI::Range(1, 1 << 20));

@@ -113,8 +113,12 @@ std::uint64_t piece_bytes(const ModelImage&, std::span<const std::uint32_t> piec
   return peek_piece(piece).words * sizeof(std::uint32_t);
 }
 
-render::PixelRect active_rect(const ModelImage& image) {
-  inject_compute(static_cast<double>(image.pixel_count()) * image.settings->costs.scan);
+render::PixelRect active_rect(const ModelImage& image, render::PixelRect within) {
+  const auto width = static_cast<double>(std::clamp(within.x1, 0, image.width) -
+                                         std::clamp(within.x0, 0, image.width));
+  const auto height = static_cast<double>(std::clamp(within.y1, 0, image.height) -
+                                          std::clamp(within.y0, 0, image.height));
+  inject_compute(std::max(width, 0.0) * std::max(height, 0.0) * image.settings->costs.scan);
   render::PixelRect rect;
   for (const render::PixelRect& footprint : image.footprints)
     rect = render::united(rect, footprint);
@@ -139,11 +143,11 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
   piece->rect = sent_rect;
   // Runs of neighbouring footprints in one row are joined by the encoder and counted apart
   // here; no real piece exceeds one run per pixel row of the span, nor the span's capacity.
-  piece->words = std::min<std::uint64_t>(render::kPieceHeaderWords +
-                                             render::kRunHeaderWords * runs +
-                                             render::kPixelWords * piece->pixels,
-                                         render::kPieceHeaderWords + render::kRunHeaderWords +
-                                             render::kPixelWords * std::uint64_t{span.size()});
+  piece->words =
+      std::min<std::uint64_t>(render::kPieceHeaderWords + render::kRunHeaderWords * runs +
+                                  render::kPixelWords * piece->pixels,
+                              render::kPieceHeaderWords + render::kRunHeaderWords +
+                                  render::kPixelWords * std::uint64_t{span.size()});
   const PixelCosts& costs = image.settings->costs;
   const std::uint64_t scanned = pixels_in(span, hint, image.width);
   inject_compute(static_cast<double>(scanned - std::min(scanned, piece->pixels)) * costs.scan +

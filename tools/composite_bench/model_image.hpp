@@ -79,7 +79,10 @@ struct ModelImage {
 };
 
 // The compositor's image operations (compositor.hpp), each injecting its computation.
-render::PixelRect active_rect(const ModelImage& image);
+render::PixelRect active_rect(const ModelImage& image, render::PixelRect within);
+inline render::PixelRect image_rect(const ModelImage& image) {
+  return {0, 0, image.width, image.height};
+}
 ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint);
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message);

@@ -75,7 +75,8 @@ class CompositeMpi : public ::testing::TestWithParam<CompositeAlgorithm> {
   CompositeStats composite_and_check(Framebuffer image, int root, const std::string& what) {
     const Framebuffer expected = brute_force_composite(image, MPI_COMM_WORLD, root);
     CompositeStats stats;
-    EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), root}, &stats), MPI_SUCCESS) << what;
+    EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), root, {}}, &stats), MPI_SUCCESS)
+        << what;
     if (world().rank == root) {
       EXPECT_EQ(count_differences(image, expected), 0u) << what;
     }
@@ -101,13 +102,31 @@ TEST_P(CompositeMpi, AllRanksEmptyGiveTheBackground) {
   const World w = world();
   Framebuffer image(64, 48);
   CompositeStats stats;
-  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0}, &stats), MPI_SUCCESS);
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0, {}}, &stats), MPI_SUCCESS);
   if (w.rank == 0) {
     EXPECT_EQ(count_differences(image, Framebuffer(64, 48)), 0u);
   }
   // Empty pieces cost their headers only.
   EXPECT_EQ(stats.bytes_sent % kHeaderBytes, 0u);
   EXPECT_LE(stats.bytes_sent, kHeaderBytes * max_messages_sent(make_plan(w.size, GetParam())));
+}
+
+TEST_P(CompositeMpi, AHintHoldingTheActivePixelsGivesTheSameImageAndBytes) {
+  const World w = world();
+  const Framebuffer image = random_image(257, 131, 5, w.rank, w.size, random_coverage(5, w.rank));
+  const Framebuffer expected = brute_force_composite(image, MPI_COMM_WORLD, 0);
+  CompositeStats plain_stats, hinted_stats;
+  Framebuffer plain = image, hinted = image;
+  // A loose hint (the active rectangle grown by 3 pixels, as the adaptor's screen bound is),
+  // and for an empty rank an empty one.
+  PixelRect hint = active_rect(image);
+  if (!hint.empty()) hint = {hint.x0 - 3, hint.y0 - 3, hint.x1 + 3, hint.y1 + 3};
+  ASSERT_EQ(composite(plain, MPI_COMM_WORLD, {GetParam(), 0, {}}, &plain_stats), MPI_SUCCESS);
+  ASSERT_EQ(composite(hinted, MPI_COMM_WORLD, {GetParam(), 0, hint}, &hinted_stats), MPI_SUCCESS);
+  if (w.rank == 0) {
+    EXPECT_EQ(count_differences(hinted, expected), 0u);
+  }
+  EXPECT_EQ(hinted_stats.bytes_sent, plain_stats.bytes_sent);
 }
 
 TEST_P(CompositeMpi, OneEmptyRankAmongFullOnes) {
@@ -155,7 +174,7 @@ TEST_P(CompositeMpi, ReportsTheRoundsOfItsPlan) {
   const World w = world();
   Framebuffer image = random_image(64, 48, 1, w.rank, w.size, Coverage::full);
   CompositeStats stats;
-  ASSERT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0}, &stats), MPI_SUCCESS);
+  ASSERT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0, {}}, &stats), MPI_SUCCESS);
   EXPECT_EQ(stats.rounds, w.size == 1 ? 0 : make_plan(w.size, GetParam()).round_count());
   EXPECT_GE(stats.seconds, 0.0);
 }
