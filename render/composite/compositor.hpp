@@ -1,11 +1,12 @@
 // The schedule of composite.cpp as a template over what holds the pixels, so that the one MPI
 // code runs both on real framebuffers and, in the simulator's benchmark, on images that only
 // know where their active pixels are (tools/composite_bench/). An `Image` provides, found by
-// argument-dependent lookup:
+// argument-dependent lookup (composite_codec.hpp says what each does for a Framebuffer):
 //
 //   PixelRect active_rect(const Image&);                    every active pixel lies inside
 //   Message encode_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
+//   std::optional<PixelRect> copy_piece(Image&, std::span<const std::uint32_t>);  (assembly)
 //   std::size_t Image::pixel_count() const;
 //   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
 //
@@ -118,7 +119,8 @@ class Compositor {
   // other parts and holds the span the group split; the others hand theirs on and are done.
   // This rank's own pixels outside its span need no clearing before they are overwritten: the
   // composited pixel that arrives for each was chosen over it, or is it, and a pixel whose
-  // composite is the background was the background here too.
+  // composite is the background was the background here too. So the pieces are copied, not
+  // composited (copy_piece): no comparison, the same image.
   int assemble(int round, int tag, bool& handed_on) {
     const RoundPosition position = round_position(plan_, round, virtual_rank_);
     const PixelSpan whole = spans_before_round_[static_cast<std::size_t>(round)];
@@ -128,7 +130,7 @@ class Compositor {
       return exchange(tag, one_send(actual_rank(keeper), encode(span_)), 0);
     }
     span_ = whole;
-    return exchange(tag, {}, plan_.radices[static_cast<std::size_t>(round)] - 1);
+    return exchange(tag, {}, plan_.radices[static_cast<std::size_t>(round)] - 1, Arrival::copy);
   }
 
   // The plan without rounds: every rank's image goes straight to the root.
@@ -151,9 +153,15 @@ class Compositor {
 
   Message encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
 
-  // Sends every message, composites the incoming ones in their order of arrival (the result
-  // does not depend on it: wins_over is a total order), then waits for the sends.
-  int exchange(int tag, std::vector<Outgoing> sends, int receive_count) {
+  // What a received piece does to the image: composited by wins_over, or copied over it (the
+  // assembly's pieces, already final).
+  enum class Arrival { composite, copy };
+
+  // Sends every message, takes in the incoming ones in their order of arrival (the result does
+  // not depend on it: wins_over is a total order, and copied pieces do not overlap), then waits
+  // for the sends.
+  int exchange(int tag, std::vector<Outgoing> sends, int receive_count,
+               Arrival arrival = Arrival::composite) {
     std::vector<MPI_Request> requests(sends.size(), MPI_REQUEST_NULL);
     int error = MPI_SUCCESS;
     std::uint64_t held = 0;
@@ -165,14 +173,16 @@ class Compositor {
       held += message_bytes(message);
     }
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
-    for (int k = 0; k < receive_count && error == MPI_SUCCESS; ++k) error = receive(tag, held);
+    for (int k = 0; k < receive_count && error == MPI_SUCCESS; ++k) {
+      error = receive(tag, held, arrival);
+    }
     const int wait_error =
         MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
     return error != MPI_SUCCESS ? error : wait_error;
   }
 
   // `held`: bytes of this round's outgoing messages, for the peak of what the rank holds.
-  int receive(int tag, std::uint64_t held) {
+  int receive(int tag, std::uint64_t held, Arrival arrival) {
     // Probe, then receive from the probed source: messages of one source and tag do not
     // overtake each other, and only this call receives on the compositor's tags. (Not the
     // matched MPI_Mprobe: SimGrid's SMPI, which runs this code at scale, lacks it.)
@@ -191,8 +201,9 @@ class Compositor {
     const std::uint64_t bytes = message_bytes(buffer_);
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held + bytes);
     stats_.bytes_received += bytes;
+    const std::span<const std::uint32_t> piece(buffer_.data(), buffer_.size());
     const auto piece_rect =
-        composite_piece(image_, std::span<const std::uint32_t>(buffer_.data(), buffer_.size()));
+        arrival == Arrival::copy ? copy_piece(image_, piece) : composite_piece(image_, piece);
     if (!piece_rect) return MPI_ERR_OTHER;
     rect_ = united(rect_, *piece_rect);
     return MPI_SUCCESS;

@@ -42,6 +42,21 @@ bool empty_input(render::PixelSpan span, render::PixelRect rect, int width) {
   return span.size() == 0 || rect.empty() || width <= 0;
 }
 
+// The piece's footprints join the image's, at `seconds_per_pixel`.
+std::optional<render::PixelRect> take_in(ModelImage& image, std::span<const std::uint32_t> message,
+                                         double seconds_per_pixel) {
+  const std::unique_ptr<ModelPiece> piece = take_piece(message);
+  if (!piece) return std::nullopt;
+  inject_compute(static_cast<double>(piece->pixels) * seconds_per_pixel);
+  for (const render::PixelRect& footprint : piece->footprints) {
+    if (std::find(image.footprints.begin(), image.footprints.end(), footprint) ==
+        image.footprints.end()) {
+      image.footprints.push_back(footprint);
+    }
+  }
+  return piece->rect;
+}
+
 }  // namespace
 
 void inject_compute(double seconds) {
@@ -140,16 +155,12 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
 
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message) {
-  const std::unique_ptr<ModelPiece> piece = take_piece(message);
-  if (!piece) return std::nullopt;
-  inject_compute(static_cast<double>(piece->pixels) * image.settings->costs.composite);
-  for (const render::PixelRect& footprint : piece->footprints) {
-    if (std::find(image.footprints.begin(), image.footprints.end(), footprint) ==
-        image.footprints.end()) {
-      image.footprints.push_back(footprint);
-    }
-  }
-  return piece->rect;
+  return take_in(image, message, image.settings->costs.composite);
+}
+
+std::optional<render::PixelRect> copy_piece(ModelImage& image,
+                                            std::span<const std::uint32_t> message) {
+  return take_in(image, message, image.settings->costs.copy);
 }
 
 }  // namespace tetray::composite_bench
