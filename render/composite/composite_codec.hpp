@@ -3,22 +3,51 @@
 // of the piece's active rectangle are scanned, so a rank whose part of the mesh covers little of
 // the screen sends, and reads, little.
 //
-// Layout, in 32-bit words: start, run count, pixel count, active rectangle (x0, y0, x1, y1),
-// then per run: pixels skipped since the previous run, pixel count, and per pixel r, g, b, a,
-// depth (float bits) and the hit key.
+// Layout, in 32-bit words: start, run count, pixel count, the rectangle of the pixels sent (x0,
+// y0, x1, y1), then per run: pixels skipped since the previous run, pixel count n, and the
+// run's pixels as three arrays, as the framebuffer holds them: 4 n words r, g, b, a, n depths
+// (float bits), n hit keys. A run continues across rows where the active pixels do (a
+// full-width region is one run). So encoding is a scan for runs and three copies per run,
+// decoding works on arrays (the compositing loop vectorizes), and a pixel costs 24 bytes.
 #pragma once
 
 #include <cstdint>
+#include <new>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "render/composite/composite_region.hpp"
 #include "render/core/framebuffer.hpp"
+#include "render/core/large_array.hpp"
 
 namespace tetray::render {
 
-using PieceMessage = std::vector<std::uint32_t>;
+// Words of a message on huge pages (a dense piece of a 2048 x 2048 image is 50 MB) and left
+// uninitialised when the vector grows: the encoder and MPI_Recv write every word, so zeroing
+// them first would only add a pass over memory.
+template <typename T>
+struct MessageAllocator : HugePageAllocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = MessageAllocator<U>;
+  };
+  MessageAllocator() = default;
+  template <typename U>
+  explicit MessageAllocator(const MessageAllocator<U>&) noexcept {}
+
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+using PieceMessage = std::vector<std::uint32_t, MessageAllocator<std::uint32_t>>;
 
 inline constexpr std::size_t kPieceHeaderWords = 7;
 inline constexpr std::size_t kRunHeaderWords = 2;
@@ -43,9 +72,14 @@ inline std::uint64_t piece_bytes(const Framebuffer&, std::span<const std::uint32
 // looser rectangle costs scanning time, never correctness).
 PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);
 
-// Composites an encoded piece into `image` by wins_over and returns the piece's active
-// rectangle, or nothing when the message is malformed or does not fit the image.
+// Composites an encoded piece into `image` by wins_over and returns the rectangle of its
+// pixels, or nothing, leaving `image` as it was, when the message is malformed or does not fit
+// the image.
 std::optional<PixelRect> composite_piece(Framebuffer& image,
                                          std::span<const std::uint32_t> message);
+
+// Writes the piece's pixels over those of `image` (the assembly of the final image, whose
+// pieces are already composited); otherwise as composite_piece.
+std::optional<PixelRect> copy_piece(Framebuffer& image, std::span<const std::uint32_t> message);
 
 }  // namespace tetray::render

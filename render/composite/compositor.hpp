@@ -1,12 +1,13 @@
 // The schedule of composite.cpp as a template over what holds the pixels, so that the one MPI
 // code runs both on real framebuffers and, in the simulator's benchmark, on images that only
 // know where their active pixels are (tools/composite_bench/). An `Image` provides, found by
-// argument-dependent lookup:
+// argument-dependent lookup (composite_codec.hpp says what each does for a Framebuffer):
 //
 //   PixelRect active_rect(const Image&, PixelRect within);   of the active pixels within
 //   PixelRect image_rect(const Image&);                      the whole image
 //   Message encode_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
+//   std::optional<PixelRect> copy_piece(Image&, std::span<const std::uint32_t>);  (assembly)
 //   std::size_t Image::pixel_count() const;
 //   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
 //   std::size_t piece_capacity(const Image&, PixelSpan);   most words a piece of the span takes
@@ -132,7 +133,8 @@ class Compositor {
   // other parts and holds the span the group split; the others hand theirs on and are done.
   // This rank's own pixels outside its span need no clearing before they are overwritten: the
   // composited pixel that arrives for each was chosen over it, or is it, and a pixel whose
-  // composite is the background was the background here too.
+  // composite is the background was the background here too. So the pieces are copied, not
+  // composited (copy_piece): no comparison, the same image.
   int assemble(int round, int tag, bool& handed_on) {
     const int radix = plan_.radices[static_cast<std::size_t>(round)];
     const RoundPosition position = round_position(plan_, round, virtual_rank_);
@@ -148,7 +150,7 @@ class Compositor {
           {actual_rank(virtual_rank_ + part * position.stride), split_span(whole, radix, part)});
     }
     span_ = whole;
-    return exchange(tag, {}, receives);
+    return exchange(tag, {}, receives, Arrival::copy);
   }
 
   // The plan without rounds: every rank's image goes straight to the root.
@@ -193,12 +195,17 @@ class Compositor {
 
   Message encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
 
+  // What a received piece does to the image: composited by wins_over, or copied over it (the
+  // assembly's pieces, already final).
+  enum class Arrival { composite, copy };
+
   // Posts the receives (at most kPostedReceives at a time, each into a buffer as large as its
-  // span allows), sends every message, composites the incoming pieces in their order of arrival
-  // (the result does not depend on it: wins_over is a total order), then waits for the sends.
-  // Receives are posted from known peers rather than probed: a probe polls in SimGrid's SMPI,
-  // whose simulated time it would distort.
-  int exchange(int tag, std::vector<Outgoing> sends, const std::vector<Incoming>& receives) {
+  // span allows), sends every message, takes in the incoming pieces in their order of arrival
+  // (the result does not depend on it: wins_over is a total order, and copied pieces do not
+  // overlap), then waits for the sends. Receives are posted from known peers rather than
+  // probed: a probe polls in SimGrid's SMPI, whose simulated time it would distort.
+  int exchange(int tag, std::vector<Outgoing> sends, const std::vector<Incoming>& receives,
+               Arrival arrival = Arrival::composite) {
     std::vector<MPI_Request> send_requests(sends.size(), MPI_REQUEST_NULL);
     int error = MPI_SUCCESS;
     std::uint64_t held = 0;
@@ -213,7 +220,7 @@ class Compositor {
     for (std::size_t first = 0; first < receives.size() && error == MPI_SUCCESS;
          first += kPostedReceives) {
       const std::size_t count = std::min(kPostedReceives, receives.size() - first);
-      error = receive_batch(tag, std::span(receives).subspan(first, count), held);
+      error = receive_batch(tag, std::span(receives).subspan(first, count), held, arrival);
     }
     const int wait_error = MPI_Waitall(static_cast<int>(send_requests.size()), send_requests.data(),
                                        MPI_STATUSES_IGNORE);
@@ -221,7 +228,8 @@ class Compositor {
   }
 
   // `held`: bytes of this round's outgoing messages, for the peak of what the rank holds.
-  int receive_batch(int tag, std::span<const Incoming> receives, std::uint64_t held) {
+  int receive_batch(int tag, std::span<const Incoming> receives, std::uint64_t held,
+                    Arrival arrival) {
     if (buffers_.size() < receives.size()) buffers_.resize(receives.size());
     std::vector<MPI_Request> requests(receives.size(), MPI_REQUEST_NULL);
     for (std::size_t k = 0; k < receives.size(); ++k) {
@@ -250,7 +258,8 @@ class Compositor {
       const std::uint64_t bytes = piece_bytes(image_, piece);
       held += bytes;
       stats_.bytes_received += bytes;
-      const auto piece_rect = composite_piece(image_, piece);
+      const auto piece_rect =
+          arrival == Arrival::copy ? copy_piece(image_, piece) : composite_piece(image_, piece);
       if (!piece_rect) {
         cancel(requests);
         return MPI_ERR_OTHER;

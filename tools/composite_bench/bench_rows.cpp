@@ -11,8 +11,10 @@ namespace tetray::composite_bench {
 void print_costs(const MachineCosts& c) {
   std::printf("ping-pong: latency %.2f us one way, bandwidth %.2f GB/s (16 MiB messages)\n",
               c.latency_s * 1e6, c.bandwidth_Bps / 1e9);
-  std::printf("per pixel: scan %.2f ns, encode %.2f ns, composite %.2f ns (24 bytes on the wire)\n",
-              c.pixel.scan * 1e9, c.pixel.encode * 1e9, c.pixel.composite * 1e9);
+  std::printf(
+      "per pixel: scan %.2f ns, encode %.2f ns, composite %.2f ns, copy %.2f ns (24 bytes on the "
+      "wire)\n",
+      c.pixel.scan * 1e9, c.pixel.encode * 1e9, c.pixel.composite * 1e9, c.pixel.copy * 1e9);
 }
 
 void print_rows(const std::vector<Row>& rows) {
@@ -47,6 +49,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
   json["scan_ns_per_pixel"] = number(c.pixel.scan * 1e9);
   json["encode_ns_per_pixel"] = number(c.pixel.encode * 1e9);
   json["composite_ns_per_pixel"] = number(c.pixel.composite * 1e9);
+  json["copy_ns_per_pixel"] = number(c.pixel.copy * 1e9);
   json["runs"] = Json::Value(Json::arrayValue);
   for (const Row& r : rows) {
     Json::Value run;

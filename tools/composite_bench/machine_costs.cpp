@@ -55,8 +55,22 @@ double seconds_of(Work&& work) {
   return best;
 }
 
+// CPU time per pixel of taking `message` into a fresh copy of `target` with `take_in`
+// (composite_piece or copy_piece), best of three.
+template <typename TakeIn>
+double seconds_per_pixel(const Framebuffer& target, const render::PieceMessage& message,
+                         TakeIn&& take_in) {
+  Framebuffer image;
+  double best = INFINITY;
+  for (int run = 0; run < 3; ++run) {
+    image = target;
+    best = std::min(best, seconds_of([&] { take_in(image, message); }));
+  }
+  return best / static_cast<double>(target.pixel_count());
+}
+
 // The compositor's kernels at `size` squared: the activity scan of a nearly empty image (its
-// worst case), then encoding and compositing a dense piece.
+// worst case), then encoding a dense piece, and compositing and copying it into another.
 PixelCosts measure_pixel_costs(int size) {
   Framebuffer nearly_empty(size, size);
   nearly_empty.depth.back() = 1.0f;
@@ -70,14 +84,12 @@ PixelCosts measure_pixel_costs(int size) {
   render::PieceMessage message;
   costs.scan = seconds_of([&] { scanned = render::active_rect(nearly_empty); }) / pixels;
   costs.encode = seconds_of([&] { message = render::encode_piece(image, all, rect); }) / pixels;
-  Framebuffer composited;
-  double composite_s = INFINITY;
-  for (int run = 0; run < 3; ++run) {
-    composited = target;
-    composite_s =
-        std::min(composite_s, seconds_of([&] { render::composite_piece(composited, message); }));
-  }
-  costs.composite = composite_s / pixels;
+  costs.composite = seconds_per_pixel(target, message, [](Framebuffer& into, const auto& piece) {
+    return render::composite_piece(into, piece);
+  });
+  costs.copy = seconds_per_pixel(target, message, [](Framebuffer& into, const auto& piece) {
+    return render::copy_piece(into, piece);
+  });
   return costs;
 }
 
@@ -117,10 +129,10 @@ MachineCosts measure_machine(MPI_Comm world, int size) {
   }
   if (rank == 0) costs.pixel = measure_pixel_costs(size);
   sleeping_barrier(world);
-  double shared[] = {costs.latency_s, costs.bandwidth_Bps, costs.pixel.scan, costs.pixel.encode,
-                     costs.pixel.composite};
-  MPI_Bcast(shared, 5, MPI_DOUBLE, 0, world);
-  return {shared[0], shared[1], {shared[2], shared[3], shared[4]}};
+  double shared[] = {costs.latency_s,    costs.bandwidth_Bps,   costs.pixel.scan,
+                     costs.pixel.encode, costs.pixel.composite, costs.pixel.copy};
+  MPI_Bcast(shared, 6, MPI_DOUBLE, 0, world);
+  return {shared[0], shared[1], {shared[2], shared[3], shared[4], shared[5]}};
 }
 
 }  // namespace tetray::composite_bench

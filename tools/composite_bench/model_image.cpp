@@ -48,6 +48,21 @@ std::size_t scaled_words(std::uint64_t words, int byte_scale) {
   return std::max<std::size_t>(kAddressWords, (words + scale - 1) / scale);
 }
 
+// The piece's footprints join the image's, at `seconds_per_pixel`.
+std::optional<render::PixelRect> take_in(ModelImage& image, std::span<const std::uint32_t> message,
+                                         double seconds_per_pixel) {
+  const std::unique_ptr<ModelPiece> piece = take_piece(message);
+  if (!piece) return std::nullopt;
+  inject_compute(static_cast<double>(piece->pixels) * seconds_per_pixel);
+  for (const render::PixelRect& footprint : piece->footprints) {
+    if (std::find(image.footprints.begin(), image.footprints.end(), footprint) ==
+        image.footprints.end()) {
+      image.footprints.push_back(footprint);
+    }
+  }
+  return piece->rect;
+}
+
 }  // namespace
 
 void inject_compute(double seconds) {
@@ -157,16 +172,12 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
 
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message) {
-  const std::unique_ptr<ModelPiece> piece = take_piece(message);
-  if (!piece) return std::nullopt;
-  inject_compute(static_cast<double>(piece->pixels) * image.settings->costs.composite);
-  for (const render::PixelRect& footprint : piece->footprints) {
-    if (std::find(image.footprints.begin(), image.footprints.end(), footprint) ==
-        image.footprints.end()) {
-      image.footprints.push_back(footprint);
-    }
-  }
-  return piece->rect;
+  return take_in(image, message, image.settings->costs.composite);
+}
+
+std::optional<render::PixelRect> copy_piece(ModelImage& image,
+                                            std::span<const std::uint32_t> message) {
+  return take_in(image, message, image.settings->costs.copy);
 }
 
 }  // namespace tetray::composite_bench

@@ -13,7 +13,7 @@
 // Computation between MPI calls is injected, not run: each kernel's pixels times the per-pixel
 // cost measured on this machine (`PixelCosts`), as simulated time on the rank's host. Scanned
 // pixels cost `scan`, active pixels written into a message `encode` (the dense encoding's cost,
-// whose scanning is part of it), received ones `composite`.
+// whose scanning is part of it), received ones `composite`, or `copy` in the assembly.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,7 @@ struct PixelCosts {
   double scan = 0;       // seconds per pixel scanned for activity
   double encode = 0;     // per active pixel written into a message, scanning included
   double composite = 0;  // per pixel of a message composited into the image
+  double copy = 0;       // per pixel of a message copied into the image (the assembly)
 };
 
 // Computation of `seconds` on this rank: simulated time under SMPI; outside the simulator the
@@ -86,6 +87,8 @@ inline render::PixelRect image_rect(const ModelImage& image) {
 ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint);
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message);
+std::optional<render::PixelRect> copy_piece(ModelImage& image,
+                                            std::span<const std::uint32_t> message);
 std::uint64_t message_bytes(const ModelMessage& message);
 std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span);
 std::uint64_t piece_bytes(const ModelImage& image, std::span<const std::uint32_t> piece);

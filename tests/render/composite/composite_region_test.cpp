@@ -1,9 +1,12 @@
-// Spans and active rectangles against direct definitions.
+// Spans, the activity scans and active rectangles against direct definitions.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "render/composite/composite_region.hpp"
+#include "run_images.hpp"
 
 namespace tetray::render {
 namespace {
@@ -45,6 +48,82 @@ TEST(ActiveRect, InfiniteDepthWithAKeyStillCountsAsActive) {
   Framebuffer image(4, 4);
   image.hit[image.index(2, 3)] = 5;
   EXPECT_EQ(active_rect(image), (PixelRect{2, 3, 3, 4}));
+}
+
+TEST(IsActive, IsWinningOverTheBackground) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (float depth :
+       {-kInf, -1.0f, -0.0f, 0.0f, 3.5f, std::numeric_limits<float>::max(), kInf, std::nanf("")}) {
+    for (std::uint32_t hit : {0u, 5u, kNoHit - 1, kNoHit}) {
+      EXPECT_EQ(is_active(depth, hit), wins_over(depth, hit, kInf, kNoHit))
+          << "depth " << depth << " key " << hit;
+    }
+  }
+}
+
+// The first pixel of [begin, end) whose activity is not `active`, one pixel at a time.
+std::uint32_t run_end_by_pixels(const Framebuffer& image, std::uint32_t begin, std::uint32_t end,
+                                bool active) {
+  while (begin < end && testing::differs_from_background(image, begin) == active) ++begin;
+  return begin;
+}
+
+std::uint32_t run_start_by_pixels(const Framebuffer& image, std::uint32_t begin, std::uint32_t end,
+                                  bool active) {
+  while (end > begin && testing::differs_from_background(image, end - 1) == active) --end;
+  return end;
+}
+
+TEST(ActivityScan, FindsTheEndsOfRunsAsAPixelByPixelScanDoes) {
+  std::mt19937 rng(11);
+  for (int longest : {3, 40, 300}) {
+    const Framebuffer image =
+        testing::run_image(311, 17, 5u + static_cast<std::uint32_t>(longest), longest);
+    const auto pixels = static_cast<std::uint32_t>(image.pixel_count());
+    for (int trial = 0; trial < 2000; ++trial) {
+      std::uint32_t begin = static_cast<std::uint32_t>(rng() % (pixels + 1));
+      std::uint32_t end = static_cast<std::uint32_t>(rng() % (pixels + 1));
+      if (begin > end) std::swap(begin, end);
+      for (bool active : {false, true}) {
+        EXPECT_EQ(run_end(image, begin, end, active), run_end_by_pixels(image, begin, end, active))
+            << begin << " " << end << " " << active;
+        EXPECT_EQ(run_start(image, begin, end, active),
+                  run_start_by_pixels(image, begin, end, active))
+            << begin << " " << end << " " << active;
+      }
+    }
+  }
+}
+
+TEST(ActivityScan, CrossesWholeBlocksOfOneKind) {
+  Framebuffer image(100, 1);
+  EXPECT_EQ(run_end(image, 3, 100, false), 100u);
+  EXPECT_EQ(run_start(image, 0, 97, false), 0u);
+  image.hit[70] = 1;  // infinitely far with a key: active
+  EXPECT_EQ(run_end(image, 3, 100, false), 70u);
+  EXPECT_EQ(run_start(image, 0, 100, false), 71u);
+  for (std::size_t p = 0; p < 100; ++p) image.depth[p] = 1.0f;
+  EXPECT_EQ(run_end(image, 1, 99, true), 99u);
+  EXPECT_EQ(run_start(image, 1, 99, true), 1u);
+  image.depth[20] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(run_end(image, 1, 99, true), 20u);
+  EXPECT_EQ(run_start(image, 1, 99, true), 21u);
+}
+
+TEST(ActiveRect, BoundsRandomRuns) {
+  for (int longest : {2, 50, 900}) {
+    const Framebuffer image =
+        testing::run_image(203, 9, 3u * static_cast<std::uint32_t>(longest), longest);
+    PixelRect expected;
+    for (int j = 0; j < image.height; ++j) {
+      for (int i = 0; i < image.width; ++i) {
+        if (testing::differs_from_background(image, image.index(i, j))) {
+          expected = united(expected, {i, j, i + 1, j + 1});
+        }
+      }
+    }
+    EXPECT_EQ(active_rect(image), expected) << longest;
+  }
 }
 
 }  // namespace
