@@ -76,6 +76,9 @@ simulate() {
     [ "${args[k]}" = --byte-scale ] && scale=${args[k + 1]}
   done
   [ "$scale" = 1 ] || settings+=("--cfg=smpi/bw-factor:0:$(python3 -c "print(1/$scale)")")
+  # A model image's computation is injected: the host's time between MPI calls (its
+  # bookkeeping, the allocation of its messages) must not count as well. Real images' does.
+  [[ " $* " == *" --model "* ]] && settings+=(--cfg=smpi/simulate-computation:no)
   smpirun -no-privatize -np "$ranks" -hostfile "$hosts" -platform "$platforms/$platform.xml" \
     --cfg=smpi/host-speed:1Gf --cfg=smpi/send-is-detached-thresh:0 "${settings[@]}" \
     build-smpi/bin/tetray-composite-bench --ranks "$ranks" --repeat 1 --json "$json" "$@" \
@@ -94,17 +97,27 @@ calibrate() {
   column -s, -t <"$out/calibration.csv"
 }
 
+# The sweep: model images (their computation injected from this machine's per-pixel costs),
+# every algorithm, sparse images of 1024^2, 2048^2 and 8192^2 on both platforms, dense ones of
+# 1024^2 and 2048^2 on the cluster (a dense 64-megapixel image is 1.6 GB on every rank). The
+# plain gather to the root (P - 1 messages) only to 1,024 ranks. 1,000 and 3,000 ranks are not
+# powers of two (3,000 = 2^3 3 5^3 folds nothing; binary swap folds its extra ranks).
 sweep() {
-  local model=(--model --costs-ns $(costs) --coverage sparse)
+  local costs_ns
+  costs_ns=$(costs)
   for platform in cluster bluegene_p; do
-    for ranks in 16 64 256 1024 4096; do
-      simulate "$platform" "$ranks" "$out/${platform}_${ranks}_sparse.json" "${model[@]}" \
-        --sizes 1024 2048 8192 --byte-scale 64 --algorithms binary_swap radix_k automatic \
-        >/dev/null
-      [ "$platform" = cluster ] && simulate cluster "$ranks" "$out/cluster_${ranks}_dense.json" \
-        --model --costs-ns $(costs) --coverage dense --sizes 1024 2048 --byte-scale 64 \
-        --algorithms binary_swap radix_k automatic >/dev/null
-      echo "$platform $ranks done"
+    for ranks in 16 64 256 1000 1024 3000 4096; do
+      local algorithms=(binary_swap radix_k)
+      ((ranks <= 1024)) && algorithms+=(gather)
+      simulate "$platform" "$ranks" "$out/${platform}_${ranks}_sparse.json" --model \
+        --costs-ns $costs_ns --coverage sparse --sizes 1024 2048 8192 --byte-scale 64 \
+        --algorithms "${algorithms[@]}" >/dev/null
+      if [ "$platform" = cluster ]; then
+        simulate cluster "$ranks" "$out/cluster_${ranks}_dense.json" --model \
+          --costs-ns $costs_ns --coverage dense --sizes 1024 2048 --byte-scale 64 \
+          --algorithms "${algorithms[@]}" >/dev/null
+      fi
+      echo "$platform $ranks ranks: done ($SECONDS s)"
     done
   done
   python3 scripts/scaling_report.py sweep "$out" >"$out/sweep.csv"
