@@ -76,12 +76,15 @@ simulate() {
     [ "${args[k]}" = --byte-scale ] && scale=${args[k + 1]}
   done
   [ "$scale" = 1 ] || settings+=("--cfg=smpi/bw-factor:0:$(python3 -c "print(1/$scale)")")
+  # Simulated times repeat exactly: one run, unless asked (real images' computation is timed).
+  local repeat=(--repeat 1)
+  [[ " $* " == *" --repeat "* ]] && repeat=()
   # A model image's computation is injected: the host's time between MPI calls (its
   # bookkeeping, the allocation of its messages) must not count as well. Real images' does.
   [[ " $* " == *" --model "* ]] && settings+=(--cfg=smpi/simulate-computation:no)
   smpirun -no-privatize -np "$ranks" -hostfile "$hosts" -platform "$platforms/$platform.xml" \
     --cfg=smpi/host-speed:1Gf --cfg=smpi/send-is-detached-thresh:0 "${settings[@]}" \
-    build-smpi/bin/tetray-composite-bench --ranks "$ranks" --repeat 1 --json "$json" "$@" \
+    build-smpi/bin/tetray-composite-bench --ranks "$ranks" --json "$json" "${repeat[@]}" "$@" \
     2> >(grep -v '^\[' >&2)
 }
 
@@ -91,9 +94,10 @@ calibrate() {
     echo "== $ranks ranks: real mpirun, then the simulator of this machine"
     mpirun -np "$ranks" "${mpi_flags[@]}" build/bin/tetray-composite-bench --sizes "${sizes[@]}" \
       --ranks "$ranks" --repeat 5 --json "$out/real_$ranks.json" | tail -n +4
-    simulate this_machine "$ranks" "$out/sim_$ranks.json" --sizes "${sizes[@]}" | tail -n +4
+    simulate this_machine "$ranks" "$out/sim_$ranks.json" --sizes "${sizes[@]}" --repeat 5 |
+      tail -n +4
   done
-  python3 scripts/scaling_report.py calibration "$out" >"$out/calibration.csv"
+  scripts/scaling_report.py calibration "$out" >"$out/calibration.csv"
   column -s, -t <"$out/calibration.csv"
 }
 
@@ -120,8 +124,8 @@ sweep() {
       echo "$platform $ranks ranks: done ($SECONDS s)"
     done
   done
-  python3 scripts/scaling_report.py sweep "$out" >"$out/sweep.csv"
-  python3 scripts/scaling_report.py plot "$out"
+  scripts/scaling_report.py sweep "$out" >"$out/sweep.csv"
+  scripts/scaling_report.py plot "$out"
 }
 
 case "${1:-}" in

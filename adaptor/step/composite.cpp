@@ -99,7 +99,8 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
     const int rc = s.config.volume
                        ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
                        : render::composite(image, comm_.comm,
-                                           {.root = writer, .active_hint = active_hint(s, k, v)});
+                                           {.root = writer, .active_hint = active_hint(s, k, v)},
+                                           nullptr, &composite_workspace_);
     if (rc != MPI_SUCCESS) {
       return {StatusCode::mpi_error,
               "compositing scene '" + s.config.name + "': " + mpi_error_text(rc)};

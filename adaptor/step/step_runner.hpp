@@ -34,6 +34,7 @@
 #include "adaptor/step/probes.hpp"
 #include "adaptor/step/scene_state.hpp"
 #include "adaptor/step/volume_scene.hpp"
+#include "render/composite/composite.hpp"
 #include "render/composite/composite_region.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/parallel/global_reduce.hpp"
@@ -188,6 +189,8 @@ class Adaptor::Impl {
   std::size_t local_tets_ = 0;
   std::vector<std::uint8_t> color_keep_;
   render::Vec3d origin_{};
+  // The compositor's receive buffers, kept between steps (render/composite/composite.hpp).
+  render::CompositeWorkspace composite_workspace_;
   std::string bvh_decision_;
   std::uint64_t tets_skipped_ = 0;
 

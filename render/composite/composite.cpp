@@ -15,9 +15,11 @@ bool well_formed(const Framebuffer& image) {
 }  // namespace
 
 int composite(Framebuffer& image, MPI_Comm comm, const CompositeOptions& options,
-              CompositeStats* stats) {
+              CompositeStats* stats, CompositeWorkspace* workspace) {
   CompositeStats local_stats;
-  return composite_image(image, well_formed(image), comm, options, stats ? *stats : local_stats);
+  CompositeWorkspace local_workspace;
+  return composite_image(image, well_formed(image), comm, options, stats ? *stats : local_stats,
+                         workspace ? *workspace : local_workspace);
 }
 
 }  // namespace tetray::render

@@ -57,7 +57,7 @@ class Compositor {
 
   // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`.
   Compositor(Image& image, MPI_Comm comm, int rank, const CompositeOptions& options,
-             CompositePlan plan, CompositeStats& stats)
+             CompositePlan plan, CompositeStats& stats, std::vector<ReceiveBuffer>& buffers)
       : start_(MPI_Wtime()),
         image_(image),
         comm_(comm),
@@ -65,6 +65,7 @@ class Compositor {
         virtual_rank_((rank - options.root + plan.rank_count) % plan.rank_count),
         plan_(std::move(plan)),
         stats_(stats),
+        buffers_(buffers),
         span_{0, static_cast<std::uint32_t>(image.pixel_count())},
         rect_(active_rect(image, options.active_hint.value_or(image_rect(image)))) {}
 
@@ -172,20 +173,6 @@ class Compositor {
     PixelSpan span;
   };
 
-  // Room for one incoming piece; grown, never shrunk, and left uninitialised (a receive
-  // overwrites what it uses).
-  struct ReceiveBuffer {
-    std::unique_ptr<std::uint32_t[]> words;
-    std::size_t capacity = 0;
-
-    void reserve(std::size_t count) {
-      if (count > capacity) {
-        words.reset(new std::uint32_t[count]);
-        capacity = count;
-      }
-    }
-  };
-
   // (A braced list would copy the message; messages only move.)
   static std::vector<Outgoing> one_send(int peer, Message message) {
     std::vector<Outgoing> sends;
@@ -286,17 +273,17 @@ class Compositor {
   int virtual_rank_;
   CompositePlan plan_;
   CompositeStats& stats_;
+  std::vector<ReceiveBuffer>& buffers_;  // the caller's, kept between calls
   PixelSpan span_;
   PixelRect rect_;
   std::vector<PixelSpan> spans_before_round_;  // the span each radix round split
-  std::vector<ReceiveBuffer> buffers_;
 };
 
 // render::composite for any Image (with width and height): agree, plan, run. `image_ok` says
 // whether this rank's image is well formed.
 template <typename Image>
 int composite_image(Image& image, bool image_ok, MPI_Comm comm, const CompositeOptions& options,
-                    CompositeStats& stats) {
+                    CompositeStats& stats, CompositeWorkspace& workspace) {
   stats = {};
   int rank = 0, rank_count = 1;
   if (int error = MPI_Comm_size(comm, &rank_count); error != MPI_SUCCESS) return error;
@@ -307,7 +294,9 @@ int composite_image(Image& image, bool image_ok, MPI_Comm comm, const CompositeO
   if (error == MPI_SUCCESS && image.pixel_count() > 0) {
     CompositePlan plan = make_plan(rank_count, options.algorithm);
     stats.rounds = plan.round_count();
-    error = Compositor<Image>(image, comm, rank, options, std::move(plan), stats).run();
+    error = Compositor<Image>(image, comm, rank, options, std::move(plan), stats,
+                              workspace.receive_buffers)
+                .run();
   }
   stats.seconds = MPI_Wtime() - start;
   return error;

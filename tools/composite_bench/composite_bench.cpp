@@ -76,22 +76,25 @@ double median(std::vector<double> values) {
 
 // One composite of a fresh copy of this rank's image; the stats of this rank.
 // `hint`: the rank's footprint, as the adaptor passes the screen bound of its mesh.
+// Both keep their receive buffers between runs, as the adaptor does between steps.
 struct RealImage {
   const render::Framebuffer& image;
   std::optional<render::PixelRect> hint;
   render::Framebuffer last;  // the result of the last run (the root's image)
+  render::CompositeWorkspace workspace;
   int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
     last = image;
-    return render::composite(last, comm, {algorithm, 0, hint}, &stats);
+    return render::composite(last, comm, {algorithm, 0, hint}, &stats, &workspace);
   }
 };
 
 struct ModelRun {
   ModelImage image;
   std::optional<render::PixelRect> hint;
+  render::CompositeWorkspace workspace;
   int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
     ModelImage copy = image;
-    return render::composite_image(copy, true, comm, {algorithm, 0, hint}, stats);
+    return render::composite_image(copy, true, comm, {algorithm, 0, hint}, stats, workspace);
   }
 };
 
@@ -164,11 +167,11 @@ std::vector<Row> measure_rank_count(int ranks, const BenchOptions& options,
         std::optional<render::PixelRect> hint;
         if (options.hint) hint = covered;
         if (options.model) {
-          ModelRun run{{size, size, {covered}, &settings}, hint};
+          ModelRun run{{size, size, {covered}, &settings}, hint, {}};
           rows.push_back(measure(run, size, comm, algorithm, options.repeat));
         } else {
           const render::Framebuffer image = bench_image(coverage, size, rank, ranks);
-          RealImage run{image, hint, {}};
+          RealImage run{image, hint, {}, {}};
           rows.push_back(measure(run, size, comm, algorithm, options.repeat));
           rows.back().root_image_hash = rank == 0 ? image_hash(run.last) : 0;
         }
