@@ -69,8 +69,8 @@ CompositePlan make_plan(int rank_count, CompositeAlgorithm algorithm) {
   }
   // Radix-k with the largest radices for every count: fewer rounds on the critical path, in
   // the swap and in the assembly that takes them back, and the same bytes as binary swap. It
-  // is the faster of the two at every rank count, image size and coverage measured, real and
-  // simulated (docs/scaling.md).
+  // is the faster of the two at every rank count, image size and coverage of the simulated
+  // sweep (docs/scaling.md).
   return radix_k_plan(rank_count);
 }
 
