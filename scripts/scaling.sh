@@ -105,7 +105,7 @@ calibrate() {
 # every algorithm, sparse images of 1024^2, 2048^2 and 8192^2 on both platforms, dense ones of
 # 1024^2 and 2048^2 on the cluster (a dense 64-megapixel image is 1.6 GB on every rank). The
 # plain gather to the root (P - 1 messages) only to 1,024 ranks. 1,000 and 3,000 ranks are not
-# powers of two (3,000 = 2^3 3 5^3 folds nothing; binary swap folds its extra ranks).
+# powers of two (radix-k takes both whole, 3,000 = 2^3 3 5^3; binary swap folds its extra ranks).
 sweep() {
   local costs_ns
   costs_ns=$(costs)
