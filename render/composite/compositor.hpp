@@ -21,7 +21,7 @@
 // of digit 1..k-1 send theirs to the member of digit 0, which then holds the group's whole span.
 // Going back round by round, every message is one contiguous span and the root (virtual rank
 // 0, digit 0 in every round) receives the image in as many steps as there were rounds, not
-// P - 1 messages: log P latencies instead of P (Moreland et al., SC 2011, §4, the same tree).
+// P - 1 messages: log P latencies instead of P.
 #pragma once
 
 #include <mpi.h>
