@@ -38,6 +38,29 @@ sys.stdout.write(''.join(f'{prefix}{n}\n' for n in range(nodes) for _ in range(p
   echo "$file"
 }
 
+# The Blue Gene/P's ranks in Z-order of the torus (TETRAY_SCALING_MAPPING=zorder): consecutive
+# ranks fill nodes along a Morton curve over x, y and z, so that every radix group (ranks 1, 8,
+# 64, ... apart) lies in a compact block of nodes, a few links across; a job's mapping file
+# (BG/P's BG_MAPPING) can place ranks so. The default fills nodes in the torus's own order (x
+# fastest), as BG/P's default XYZT mapping does.
+zorder_hostfile() {
+  local file=$out/hosts/bluegene_p_zorder.txt
+  [ -f "$file" ] || python3 -c "
+dims = (8, 32, 32)
+def key(c):
+    k, bit = 0, 0
+    for b in range(5):
+        for a in range(3):
+            if b < dims[a].bit_length() - 1:  # the coordinate's bits, interleaved
+                k |= ((c[a] >> b) & 1) << bit
+                bit += 1
+    return k
+nodes = sorted(((x, y, z) for x in range(8) for y in range(32) for z in range(32)), key=key)
+print(''.join(f'bgp-{x + 8 * y + 256 * z}
+' * 4 for x, y, z in nodes), end='')" >"$file"
+  echo "$file"
+}
+
 # The per-pixel costs of this machine's kernels (scan, encode, composite, copy, in ns), measured
 # once by the normal build on 2 ranks; the model images inject them.
 costs() {
@@ -64,7 +87,12 @@ simulate() {
   case $platform in
     this_machine) hosts=$(hostfile this_machine here 1 32768) ;;
     cluster) hosts=$(hostfile cluster node- 4096 8) ;;
-    bluegene_p) hosts=$(hostfile bluegene_p bgp- 8192 4) ;;
+    bluegene_p)
+      if [ "${TETRAY_SCALING_MAPPING:-torus}" = zorder ]; then
+        hosts=$(zorder_hostfile)
+      else
+        hosts=$(hostfile bluegene_p bgp- 8192 4)
+      fi ;;
     *) echo "unknown platform $platform" >&2; exit 2 ;;
   esac
   local settings=()
