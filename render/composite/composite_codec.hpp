@@ -12,40 +12,15 @@
 #pragma once
 
 #include <cstdint>
-#include <new>
 #include <optional>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "render/composite/composite_region.hpp"
+#include "render/composite/message_memory.hpp"
 #include "render/core/framebuffer.hpp"
-#include "render/core/large_array.hpp"
 
 namespace tetray::render {
-
-// Words of a message on huge pages (a dense piece of a 2048 x 2048 image is 50 MB) and left
-// uninitialised when the vector grows: the encoder and MPI_Recv write every word, so zeroing
-// them first would only add a pass over memory.
-template <typename T>
-struct MessageAllocator : HugePageAllocator<T> {
-  template <typename U>
-  struct rebind {
-    using other = MessageAllocator<U>;
-  };
-  MessageAllocator() = default;
-  template <typename U>
-  explicit MessageAllocator(const MessageAllocator<U>&) noexcept {}
-
-  template <typename U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
 
 using PieceMessage = std::vector<std::uint32_t, MessageAllocator<std::uint32_t>>;
 
