@@ -32,6 +32,7 @@ void Adaptor::Impl::render_volume_scene(SceneState& s, std::size_t k,
     const render::Camera camera = view_camera(s, k, v);
     // A camera inside this rank's tets starts every ray's walk in the eye's tet.
     options.eye_tet = render::locate_eye(volume.volume(), volume.bvh(), camera);
+    options.bvh = &volume.bvh();
     s.fragments[v] = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
                                            camera, options);
     s.images[v] = render::resolve(s.fragments[v]);

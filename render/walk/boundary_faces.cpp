@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "render/walk/slab_ray.hpp"
+
 namespace tetray::render {
 namespace {
 
@@ -49,29 +51,6 @@ void split(const TetVolume& volume, std::vector<BoundaryFace>& faces,
   nodes[node].count = 0;
   split(volume, faces, nodes, children, first, middle);
   split(volume, faces, nodes, children + 1, middle, last);
-}
-
-// Where the ray enters the node's box within [t_lo, t_hi]; NaN when it misses it (every
-// comparison with a miss is false).
-double box_entry(const RayFrame& frame, const BoundaryNode& node, double t_lo, double t_hi) {
-  constexpr double kMiss = std::numeric_limits<double>::quiet_NaN();
-  for (int axis = 0; axis < 3; ++axis) {
-    const double o = frame.origin[axis];
-    const double d = frame.direction[axis];
-    // The box grows by a few float ulps so a face lying in a box side is never missed.
-    const double pad = 1e-6 * (1.0 + std::max(std::abs(node.lo[axis]), std::abs(node.hi[axis])));
-    const double lo = node.lo[axis] - pad, hi = node.hi[axis] + pad;
-    if (d == 0) {
-      if (o < lo || o > hi) return kMiss;
-      continue;
-    }
-    double t0 = (lo - o) / d, t1 = (hi - o) / d;
-    if (t0 > t1) std::swap(t0, t1);
-    t_lo = std::max(t_lo, t0);
-    t_hi = std::min(t_hi, t1);
-    if (t_lo > t_hi) return kMiss;
-  }
-  return t_lo;
 }
 
 // The face projected and ordered counter-clockwise around the ray, when the ray passes
@@ -170,38 +149,62 @@ void refit_boundary_faces(const TetVolume& volume, BoundaryFaces& boundary) {
       }
     }
   }
+  // Children before parents above, so every parent grew from its children's exact bounds.
+  for (BoundaryNode& node : boundary.nodes) grow_box(node.lo, node.hi);
 }
 
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
                                     const RayFrame& frame, double t_from, EntryCursor after,
-                                    std::span<const float> second) {
+                                    std::span<const float> second,
+                                    const EntryCandidates* candidates) {
   if (boundary.nodes.empty()) return std::nullopt;
   std::optional<FaceEntry> best;
   double t_best = std::numeric_limits<double>::infinity();
-  std::uint32_t stack[64];
+  // The best entry in (t, face) order is the same whichever order the faces are tried in.
+  const auto consider = [&](std::uint32_t f) {
+    const std::optional<ProjectedFace> projected = entering(volume, frame, boundary.faces[f]);
+    if (!projected) return;
+    const FaceCrossing crossing = cross_face(volume, frame, *projected, second);
+    if (crossing.t < t_from || !is_after(crossing.t, f, after)) return;
+    if (best && (crossing.t > t_best || (crossing.t == t_best && f > best->face))) return;
+    best = FaceEntry{f, boundary.faces[f].tet, *projected, crossing};
+    t_best = crossing.t;
+  };
+  if (candidates != nullptr) {
+    for (const std::uint32_t f : candidates->tile) consider(f);
+    for (const std::uint32_t f : candidates->everywhere) consider(f);
+    return best;
+  }
+  const SlabRay ray(frame);
+  // Pending nodes with where the ray enters their boxes; a node is skipped when that lies beyond
+  // the best entry found since it was pushed.
+  struct Pending {
+    std::uint32_t node;
+    double t;
+  };
+  Pending stack[64];
   int top = 0;
-  stack[top++] = 0;
+  const auto entry_of = [&](std::uint32_t i) {
+    return slab_entry(ray, boundary.nodes[i].lo, boundary.nodes[i].hi, t_from, t_best);
+  };
+  const double root_t = entry_of(0);
+  if (!(root_t <= t_best)) return best;
+  stack[top++] = {0, root_t};
   while (top > 0) {
-    const BoundaryNode& node = boundary.nodes[stack[--top]];
-    if (!(box_entry(frame, node, t_from, t_best) <= t_best)) continue;
+    const Pending pending = stack[--top];
+    if (!(pending.t <= t_best)) continue;
+    const BoundaryNode& node = boundary.nodes[pending.node];
     if (node.count == 0) {
       // The nearer child last, so it is searched first and its hits prune the other.
-      const double near_first = box_entry(frame, boundary.nodes[node.first], t_from, t_best);
-      const double near_second = box_entry(frame, boundary.nodes[node.first + 1], t_from, t_best);
-      const bool second_nearer = near_second < near_first;
-      stack[top++] = node.first + (second_nearer ? 0 : 1);
-      stack[top++] = node.first + (second_nearer ? 1 : 0);
+      const Pending left{node.first, entry_of(node.first)};
+      const Pending right{node.first + 1, entry_of(node.first + 1)};
+      const bool right_nearer = right.t < left.t;
+      for (const Pending& p : {right_nearer ? left : right, right_nearer ? right : left}) {
+        if (p.t <= t_best) stack[top++] = p;
+      }
       continue;
     }
-    for (std::uint32_t f = node.first; f < node.first + node.count; ++f) {
-      const std::optional<ProjectedFace> projected = entering(volume, frame, boundary.faces[f]);
-      if (!projected) continue;
-      const FaceCrossing crossing = cross_face(volume, frame, *projected, second);
-      if (crossing.t < t_from || !is_after(crossing.t, f, after)) continue;
-      if (best && (crossing.t > t_best || (crossing.t == t_best && f > best->face))) continue;
-      best = FaceEntry{f, boundary.faces[f].tet, *projected, crossing};
-      t_best = crossing.t;
-    }
+    for (std::uint32_t f = node.first; f < node.first + node.count; ++f) consider(f);
   }
   return best;
 }

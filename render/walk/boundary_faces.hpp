@@ -72,6 +72,13 @@ struct EntryCursor {
   bool any = false;  // false: no entry yet, every (t, face) is after the cursor
 };
 
+// The only faces a ray may enter through, where a view has binned them (entry_bins.hpp):
+// next_entry then tests these instead of searching the tree.
+struct EntryCandidates {
+  std::span<const std::uint32_t> tile;        // the faces of the ray's tile of pixels
+  std::span<const std::uint32_t> everywhere;  // faces every ray of the view must test
+};
+
 // Where a walk starting inside tet `tet` (the eye's, point_locate.hpp) comes from: the tet's
 // face the ray's line enters it through, behind the eye (crossing.t <= 0), with `face` set to
 // kBoundaryFace. Empty only for a degenerate tet.
@@ -79,9 +86,11 @@ std::optional<FaceEntry> entry_behind(const TetVolume& volume, const RayFrame& f
                                       std::uint32_t tet, std::span<const float> second = {});
 
 // The first face, in (t, face) order and after `after`, through which the ray enters the domain
-// at t >= t_from; `second` as for cross_face.
+// at t >= t_from; `second` as for cross_face; `candidates`: the faces to test (they must hold
+// every face the ray enters through), null: search the tree.
 std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces& boundary,
                                     const RayFrame& frame, double t_from, EntryCursor after,
-                                    std::span<const float> second = {});
+                                    std::span<const float> second = {},
+                                    const EntryCandidates* candidates = nullptr);
 
 }  // namespace tetray::render

@@ -36,28 +36,30 @@ Gathered integrate_piece(const TransferFunction::Sample& a, const TransferFuncti
 
 }  // namespace
 
-Gathered integrate_segment(const TransferFunction& tf, std::span<const double> breakpoints,
-                           double length, double f_in, double f_out) {
+Gathered integrate_segment(const TransferFunction& tf, const BreakpointTable& table, double length,
+                           double f_in, double f_out) {
   Gathered total;
   if (!(length > 0)) return total;
   const double lo = std::min(f_in, f_out), hi = std::max(f_in, f_out);
+  // Empty space: every piece below would let all light through and add no color.
+  if (tf.clear_over(lo, hi)) return total;
   // The breakpoints strictly inside (lo, hi), in the order the ray meets them.
-  const auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
-  const auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), hi);
+  const std::vector<double>& values = table.values;
+  const auto first = std::upper_bound(values.begin(), values.end(), lo) - values.begin();
+  const auto last = std::lower_bound(values.begin(), values.end(), hi) - values.begin();
   double u0 = 0;
   TransferFunction::Sample s0 = tf.at(f_in);
-  const auto piece_to = [&](double u1, double f1) {
-    const TransferFunction::Sample s1 = tf.at(f1);
+  const auto piece_to = [&](double u1, const TransferFunction::Sample& s1) {
     total.then(integrate_piece(s0, s1, (u1 - u0) * length));
     u0 = u1;
     s0 = s1;
   };
   const std::ptrdiff_t count = last - first;
   for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const double f = f_out > f_in ? first[k] : first[count - 1 - k];
-    piece_to((f - f_in) / (f_out - f_in), f);
+    const auto at = static_cast<std::size_t>(f_out > f_in ? first + k : last - 1 - k);
+    piece_to((values[at] - f_in) / (f_out - f_in), table.samples[at]);
   }
-  piece_to(1.0, f_out);
+  piece_to(1.0, tf.at(f_out));
   return total;
 }
 

@@ -14,7 +14,6 @@
 #pragma once
 
 #include <array>
-#include <span>
 
 #include "render/walk/transfer_function.hpp"
 
@@ -33,8 +32,8 @@ struct Gathered {
 };
 
 // The stretch of length `length` along which the field goes linearly from f_in to f_out;
-// `breakpoints` is tf.breakpoints().
-Gathered integrate_segment(const TransferFunction& tf, std::span<const double> breakpoints,
-                           double length, double f_in, double f_out);
+// `table` is tf's.
+Gathered integrate_segment(const TransferFunction& tf, const BreakpointTable& table, double length,
+                           double f_in, double f_out);
 
 }  // namespace tetray::render

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <type_traits>
@@ -31,6 +32,7 @@
 
 #include "render/volume/tet_volume.hpp"
 #include "render/walk/boundary_faces.hpp"
+#include "render/walk/empty_space.hpp"
 #include "render/walk/face_adjacency.hpp"
 #include "render/walk/face_crossing.hpp"
 #include "render/walk/ray_frame.hpp"
@@ -50,11 +52,13 @@ struct WalkCounters {
   std::uint64_t tets_visited = 0;
   std::uint64_t entries = 0;    // boundary faces entered through
   std::uint64_t lost_rays = 0;  // ended by the step bound
+  std::uint64_t jumps = 0;      // over empty space (EmptySpace)
 
   WalkCounters& operator+=(const WalkCounters& o) {
     tets_visited += o.tets_visited;
     entries += o.entries;
     lost_rays += o.lost_rays;
+    jumps += o.jumps;
     return *this;
   }
 };
@@ -68,6 +72,29 @@ struct WalkMesh {
   // empty: none), e.g. the field of a volume scene's isosurfaces.
   std::span<const float> second_field = {};
 };
+
+// What a walk may skip (empty_space.hpp): the volume's BVH and which tets and nodes are busy.
+struct EmptySpace {
+  const Bvh& bvh;
+  const BusyTets& busy;
+};
+
+// Empty tets crossed in a row before a jump (next_busy_entry costs about as much as crossing a
+// hundred empty tets): a few where the tet lies in a BVH node of two leaves or more without a
+// busy tet, so the gap is likely long, many elsewhere (tetray-bench --volume-only, "sparse" and
+// "shells").
+inline constexpr int kEmptyRunInEmptyRegion = 32;
+inline constexpr int kEmptyRunBeforeJump = 128;
+
+// Rounding may put an entry a few ulps before the exit it follows.
+inline double entry_slack(double t) { return 1e-9 * (1.0 + std::abs(t)); }
+
+// Whether the walk crosses tet t without visiting it: an empty tet of a walk that skips empty
+// space and runs to the end of the ray (a walk up to a finite t_max needs every exit's t).
+inline bool skips_tet(const EmptySpace* empty, std::uint32_t t, double t_max) {
+  return empty != nullptr && t != kBoundaryFace && !empty->busy.busy(t) &&
+         t_max == std::numeric_limits<double>::infinity();
+}
 
 // Which face of the tet (entry face p0 p1 p2 counter-clockwise, new vertex p3) the ray leaves
 // through, as the index of the entry-face vertex it lies across (Aman et al. 2022, Algorithm 1;
@@ -96,9 +123,17 @@ inline FaceCrossing clamp_to_eye(const FaceCrossing& in, const FaceCrossing& out
 // `eye_tet`: the tet holding the ray's origin (a camera inside the mesh, point_locate.hpp), where
 // the walk starts before looking for boundary faces; kBoundaryFace: none. Tet20 only (Tet16
 // ignores it: it would need the neighbour behind the eye to decode the next one).
+// `empty` (Tet20 only, t_max infinite): empty tets are crossed without a visit and without the
+// field at their faces; after kEmptyRunBeforeJump of them in a row, or where the walk would leave
+// the domain from one, it jumps to the next busy tet along the ray instead (next_busy_entry),
+// entering it as from a boundary face (visit sees `entered`). A jump needs the empty stretch to
+// be longer than twice the entry slack, so it always moves past every tet visited before.
+// `candidates`: the boundary faces this ray may enter through (entry_bins.hpp); null: all.
 template <typename Layout, typename Visit>
 void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max, Visit&& visit,
-              WalkCounters& counters, std::uint32_t eye_tet = kBoundaryFace) {
+              WalkCounters& counters, std::uint32_t eye_tet = kBoundaryFace,
+              const EmptySpace* empty = nullptr, const EntryCandidates* candidates = nullptr) {
+  if constexpr (!std::is_same_v<Layout, Tet20>) empty = nullptr;  // a jump needs Tet20
   const std::uint64_t step_bound = mesh.volume.tets.size() + 64;
   std::uint64_t steps = 0;
   double t_from = 0;
@@ -108,10 +143,12 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
     if (eye_tet != kBoundaryFace)
       entry = entry_behind(mesh.volume, frame, eye_tet, mesh.second_field);
   }
-  if (!entry)
-    entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field);
-  for (; entry;
-       entry = next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field)) {
+  const auto next_boundary_entry = [&] {
+    return next_entry(mesh.volume, mesh.boundary, frame, t_from, cursor, mesh.second_field,
+                      candidates);
+  };
+  if (!entry) entry = next_boundary_entry();
+  for (; entry; entry = next_boundary_entry()) {
     if (entry->crossing.t > t_max) return;
     if (entry->face != kBoundaryFace) cursor = {entry->crossing.t, entry->face, true};
     ++counters.entries;
@@ -120,12 +157,23 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
     std::uint32_t tet = entry->tet;
     std::uint32_t previous = kBoundaryFace;
     bool entered = true;
+    // After empty tets the field at the entry face is computed only when a busy tet needs it;
+    // t_known is the last ray parameter computed, where the empty tets began.
+    bool in_known = true;
+    double t_known = in.t;
+    int empty_run = 0;  // empty tets in a row just crossed
     for (;;) {
       if (++steps > step_bound) {
         ++counters.lost_rays;
         return;
       }
       ++counters.tets_visited;
+      const bool skip = skips_tet(empty, tet, t_max);
+      if (!skip && !in_known) {
+        in = cross_face(mesh.volume, frame, face, mesh.second_field);
+        in.t = std::max(in.t, t_known);
+        in_known = true;
+      }
       const Layout& cell = mesh.adjacency.tets[tet];
       const std::uint32_t v3 = face.vertex[0] ^ face.vertex[1] ^ face.vertex[2] ^ cell.vertex_xor;
       const Point2 p3 = frame.project(vertex_position(mesh.volume, v3));
@@ -134,15 +182,61 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
           cell.next(previous, order_among(v3, face, v3), order_among(face.vertex[k], face, v3));
       face.vertex[k] = v3;
       face.point[k] = p3;
+      if (skip) {
+        // Nothing to gather here: go on, or jump over a long gap to the next busy tet.
+        const bool leaving = next == kBoundaryFace;
+        ++empty_run;
+        const int run_before_jump =
+            empty->busy.in_empty_region(tet) ? kEmptyRunInEmptyRegion : kEmptyRunBeforeJump;
+        if (empty_run < run_before_jump && !leaving) {
+          previous = tet;
+          tet = next;
+          in_known = false;
+          continue;
+        }
+        if (!leaving && skips_tet(empty, next, t_max) == false) {
+          previous = tet;
+          tet = next;
+          in_known = false;
+          continue;
+        }
+        const double t_out = std::max(cross_face(mesh.volume, frame, face).t, t_known);
+        // Every tet visited before began at or before t_known: the jump cannot meet one again.
+        if (t_out - t_known > 2 * entry_slack(t_out)) {
+          const std::optional<FaceEntry> jump =
+              next_busy_entry(mesh.volume, empty->bvh, empty->busy, frame,
+                              t_out - entry_slack(t_out), mesh.second_field);
+          if (!jump) return;
+          ++counters.jumps;
+          face = jump->projected;
+          in = jump->crossing;
+          t_known = in.t;
+          in_known = true;
+          tet = jump->tet;
+          previous = kBoundaryFace;
+          entered = true;
+          empty_run = 0;
+          continue;
+        }
+        if (leaving) {
+          t_from = t_out - entry_slack(t_out);
+          break;
+        }
+        previous = tet;
+        tet = next;
+        in_known = false;
+        continue;
+      }
+      empty_run = 0;
       FaceCrossing out = cross_face(mesh.volume, frame, face, mesh.second_field);
       in = clamp_to_eye(in, out);
       out.t = std::max(out.t, in.t);
       const WalkSegment segment{tet, in.t, out.t, in.f, out.f, entered, in.g, out.g};
       if (!visit(segment) || out.t >= t_max) return;
       entered = false;
+      t_known = out.t;
       if (next == kBoundaryFace) {
-        // Rounding may put the next entry a few ulps before this exit.
-        t_from = out.t - 1e-9 * (1.0 + std::abs(out.t));
+        t_from = out.t - entry_slack(out.t);
         break;
       }
       previous = tet;

@@ -24,6 +24,27 @@ TransferFunction::Sample TransferFunction::at(double value) const {
   return s;
 }
 
+BreakpointTable::BreakpointTable(const TransferFunction& tf) : values(tf.breakpoints()) {
+  samples.reserve(values.size());
+  for (const double v : values) samples.push_back(tf.at(v));
+}
+
+bool TransferFunction::clear_over(double lo, double hi) const {
+  // at(v) reads the points before and after upper_bound(v), clamped to the ends.
+  const auto after = [&](double v) {
+    return std::upper_bound(opacity.begin(), opacity.end(), v,
+                            [](double x, const OpacityPoint& p) { return x < p.value; });
+  };
+  auto first = after(lo);
+  if (first != opacity.begin()) --first;
+  auto last = after(hi);
+  if (last == opacity.end()) --last;
+  for (auto p = first; p <= last; ++p) {
+    if (p->opacity != 0) return false;
+  }
+  return true;
+}
+
 std::vector<double> TransferFunction::breakpoints() const {
   std::vector<double> values;
   for (const OpacityPoint& p : opacity) values.push_back(p.value);

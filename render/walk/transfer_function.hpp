@@ -29,9 +29,24 @@ struct TransferFunction {
   };
   Sample at(double value) const;
 
+  // True when the opacity is zero at every value in [lo, hi] as at() evaluates it: every
+  // opacity point at() would interpolate between for such a value is zero, so a stretch whose
+  // field stays in [lo, hi] lets all light through and emits nothing, exactly.
+  bool clear_over(double lo, double hi) const;
+
   // The values where the color or the extinction changes slope, ascending: between two of
   // them both are linear in the value.
   std::vector<double> breakpoints() const;
+};
+
+// The transfer function sampled at its breakpoints, once per frame: where a stretch of a ray
+// crosses a breakpoint the integral reads its sample here instead of evaluating the colormap and
+// the ramp again (the same values: at() of the same breakpoint).
+struct BreakpointTable {
+  explicit BreakpointTable(const TransferFunction& tf);
+
+  std::vector<double> values;                     // tf.breakpoints()
+  std::vector<TransferFunction::Sample> samples;  // tf.at(values[k])
 };
 
 }  // namespace tetray::render

@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
+#include "render/walk/entry_bins.hpp"
 #include "render/walk/fixed_step.hpp"
 #include "render/walk/point_locate.hpp"
 #include "render/walk/segment_integral.hpp"
@@ -26,7 +28,7 @@ struct RowOutput {
 class RayGatherer {
  public:
   RayGatherer(const TetVolume& volume, const VolumeRenderOptions& options,
-              const std::vector<double>& breakpoints, Vec3d direction, double depth_per_t,
+              const BreakpointTable& breakpoints, Vec3d direction, double depth_per_t,
               std::vector<VolumeFragment>& out)
       : volume_(volume),
         options_(options),
@@ -104,7 +106,7 @@ class RayGatherer {
 
   const TetVolume& volume_;
   const VolumeRenderOptions& options_;
-  const std::vector<double>& breakpoints_;
+  const BreakpointTable& breakpoints_;
   Vec3d direction_;  // unit, local
   double depth_per_t_;
   std::vector<VolumeFragment>& out_;
@@ -133,9 +135,16 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
                                   const Camera& camera, const VolumeRenderOptions& options,
                                   VolumeRenderStats* stats) {
   const CameraFrame frame = make_frame(camera);
-  const std::vector<double> breakpoints = options.transfer.breakpoints();
+  const BreakpointTable breakpoints(options.transfer);
   const WalkMesh<Tet20> mesh{volume, walk.adjacency, walk.boundary, options.surface_field};
   const Vec3d eye = camera.eye - volume.origin;
+  const bool skip = options.bvh != nullptr && !(options.sample_step > 0);
+  const BusyTets busy = skip ? find_busy_tets(volume, *options.bvh, options.transfer,
+                                              options.surfaces, options.surface_field)
+                             : BusyTets{};
+  std::optional<EmptySpace> empty;
+  if (skip) empty.emplace(EmptySpace{*options.bvh, busy});
+  const EntryBins bins = bin_entry_faces(volume, walk.boundary, camera);
   std::vector<RowOutput> rows(static_cast<std::size_t>(camera.height));
   tbb::parallel_for(0, camera.height, [&](int j) {
     RowOutput& row = rows[static_cast<std::size_t>(j)];
@@ -147,15 +156,18 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
       RayGatherer gather(volume, options, breakpoints, ray.direction,
                          dot(ray.direction, frame.forward), row.fragments);
       WalkCounters counters;
+      const EntryCandidates candidates = bins.at(i, j);
       walk_ray(
           mesh, ray, std::numeric_limits<double>::infinity(),
-          [&](const WalkSegment& s) { return gather.add(s); }, counters, options.eye_tet);
+          [&](const WalkSegment& s) { return gather.add(s); }, counters, options.eye_tet,
+          empty ? &*empty : nullptr, &candidates);
       gather.close_run();
       row.counts[static_cast<std::size_t>(i)] =
           static_cast<std::uint32_t>(row.fragments.size() - before);
       row.stats.tets_visited += counters.tets_visited;
       row.stats.entries += counters.entries;
       row.stats.lost_rays += counters.lost_rays;
+      row.stats.jumps += counters.jumps;
       row.stats.terminated_runs += gather.terminated();
     }
   });
@@ -171,9 +183,11 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
     total.tets_visited += row.stats.tets_visited;
     total.entries += row.stats.entries;
     total.lost_rays += row.stats.lost_rays;
+    total.jumps += row.stats.jumps;
     total.terminated_runs += row.stats.terminated_runs;
   }
   total.rays = image.pixel_count();
+  total.busy_tets = skip ? busy.busy_count : volume.tets.size();
   if (stats != nullptr) *stats = total;
   return image;
 }

@@ -38,6 +38,10 @@ struct VolumeRenderOptions {
   // The tet holding the camera's eye (locate_eye): every ray's walk starts there; kBoundaryFace:
   // the eye lies outside this rank's tets, rays start at the boundary faces they enter through.
   std::uint32_t eye_tet = kBoundaryFace;
+  // The volume's BVH: rays skip its empty tets (empty_space.hpp) with the exact integral; null,
+  // or with fixed-step sampling (whose samples follow from where a run starts): every tet of a
+  // ray's way is walked.
+  const Bvh* bvh = nullptr;
 };
 
 struct VolumeRenderStats {
@@ -46,6 +50,8 @@ struct VolumeRenderStats {
   std::uint64_t entries = 0;
   std::uint64_t lost_rays = 0;        // ended by the walk's step bound
   std::uint64_t terminated_runs = 0;  // ended early at the termination opacity
+  std::uint64_t jumps = 0;            // over empty space
+  std::uint64_t busy_tets = 0;        // tets not empty for the scene (all without skipping)
 };
 
 // The walk structures of a volume: built on a topology change or a BVH rebuild, the boundary

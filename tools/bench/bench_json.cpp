@@ -77,6 +77,7 @@ Json::Value scene(const SceneFigures& figures) {
   json["refit"] = refit(figures.refit);
   json["walk"] = walk_json(figures.walk);
   json["walk"]["vtk_volume"] = vtk_volume_json(figures.vtk_volume);
+  json["volume"] = volume_json(figures.volume);
   json["shading"] = shading_json(figures.shading);
   json["layers"] = layers_json(figures.layers);
   json["cap"] = cap_json(figures.cap);

@@ -22,7 +22,9 @@
 #include "bench_table.hpp"
 #include "bench_tetray.hpp"
 #include "bench_timing.hpp"
+#include "bench_volume.hpp"
 #include "tools/bench_common/bench_scene.hpp"
+#include "tools/bench_common/json_file.hpp"
 
 namespace tetray::bench {
 namespace {
@@ -73,6 +75,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   } else {
     figures.vtk_volume.skipped = "measured at the first size only";
   }
+  figures.volume = measure_volume(scene, camera, options.threads);
   figures.shading = measure_shading(scene, camera);
   figures.layers = measure_layers(scene, camera);
   figures.cap = measure_cap(scene, camera);
@@ -128,6 +131,27 @@ void study_volume_rendering(const BenchOptions& options) {
   write_dvr_study_csv(study, options.dvr_study_path);
 }
 
+// The volume-rendering figures alone (bench_volume.hpp), per size.
+void measure_volume_only(const BenchOptions& options) {
+  tbb::task_arena arena(options.threads);
+  const MachineInfo machine = describe_machine();
+  print_header(machine, options.threads, options.size_px);
+  Json::Value json;
+  for (const int n : options.sizes) {
+    arena.execute([&] {
+      const GyroidTwist scene = make_gyroid_twist(n, 0.0);
+      std::printf("\n== gyroid-twist n = %d: %zu tets ==\n", n, scene.mesh.tet_count());
+      const VolumeFigures figures =
+          measure_volume(scene, bench_camera(options.size_px), options.threads);
+      print_volume(figures);
+      Json::Value size = volume_json(figures);
+      size["n"] = n;
+      json["volume"].append(size);
+    });
+  }
+  if (!options.json_path.empty()) write_json_file(json, options.json_path);
+}
+
 }  // namespace
 }  // namespace tetray::bench
 
@@ -139,6 +163,10 @@ int main(int argc, char** argv) {
   try {
     if (!options.dvr_study_path.empty()) {
       study_volume_rendering(options);
+      return 0;
+    }
+    if (options.volume_only) {
+      measure_volume_only(options);
       return 0;
     }
     const BenchReport report = run_bench(options);

@@ -22,6 +22,8 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
   app.add_option("--dvr-study", options.dvr_study_path,
                  "only run the volume-rendering error-against-time study on the first size, "
                  "writing its CSV here");
+  app.add_flag("--volume-only", options.volume_only,
+               "only the volume-rendering figures of each size (shells, dense, skipping)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -14,6 +14,7 @@ struct BenchOptions {
   int steps = 5;               // time steps t = 0, 0.1, ... for the refit figures
   std::string lod_study_path;  // non-empty: only the level-of-detail study, as CSV here
   std::string dvr_study_path;  // not empty: only the volume-rendering error study, to this CSV
+  bool volume_only = false;    // only the volume-rendering figures (bench_volume.hpp) per size
 };
 
 // Parses argv; on --help or an error prints the message and returns the exit code to leave

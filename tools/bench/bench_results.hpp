@@ -11,6 +11,7 @@
 #include "bench_layers.hpp"
 #include "bench_shading.hpp"
 #include "bench_trace_in_turn.hpp"
+#include "bench_volume.hpp"
 #include "bench_vtk_volume.hpp"
 #include "bench_walk.hpp"
 #include "render/trace/trace.hpp"
@@ -81,6 +82,7 @@ struct SceneFigures {
   RefitFigures refit;
   WalkFigures walk;
   VtkVolumeFigures vtk_volume;  // measured at the run's first size only
+  VolumeFigures volume;
   ShadingFigures shading;
   LayerFigures layers;
   CapFigures cap;

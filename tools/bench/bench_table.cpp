@@ -96,6 +96,7 @@ void print_scene(const SceneFigures& s) {
   print_refit(s.refit);
   print_walk(s.walk);
   print_vtk_volume(s.vtk_volume);
+  print_volume(s.volume);
   print_shading(s.shading);
   print_layers(s.layers);
   print_cap(s.cap);

@@ -13,6 +13,19 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+// Tetray's dense frame against the VTK mapper named `mapper` (how many times faster), with the
+// target `at_least`; a row saying why when VTK was not measured.
+TargetCheck against_vtk(const VtkVolumeFigures& vtk, const std::string& mapper, double at_least) {
+  const std::string name = "dense volume vs VTK " + mapper;
+  const std::string target = format(">= %.0fx faster", at_least);
+  for (const VtkVolumeRun& run : vtk.runs) {
+    if (run.mapper != mapper) continue;
+    const double speedup = run.render_ms / vtk.tetray_ms;
+    return {name, format("%.2fx faster", speedup), target, speedup >= at_least};
+  }
+  return {name, vtk.skipped.empty() ? "not measured" : "not measured here", target, false};
+}
+
 }  // namespace
 
 const ReferenceTargets& reference_targets(int n) {
@@ -34,7 +47,8 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
   const double default_vs_embree = s.ref.in_turn.tetray_ms / s.ref.in_turn.embree_ms;
   const double default_step_speedup = s.refit.ref_step_total_ms / s.refit.step_total_default_ms;
   const bool rebuilt = s.refit.strong_deformation_kind == "rebuild";
-  return {
+  const double shells_vs_iso = s.volume.shells.ms / s.volume.iso_ms;
+  std::vector<TargetCheck> checks = {
       {"trace 16x16", format("%.1f Mrays/s", mrays), ">= 40 Mrays/s", mrays >= 40},
       {"trace 16x16 / Embree trace", format("%.2fx", vs_embree), "<= 1.5x", vs_embree <= 1.5},
       {"BIH build", format("%.1f M tets/s", bih_mtets_per_s), ">= 20 M tets/s",
@@ -63,7 +77,11 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
       {"strong deformation",
        s.refit.strong_deformation_kind + format(" (ratio %.2f)", s.refit.strong_deformation_ratio),
        "rebuild", rebuilt},
+      {"volume shells / isosurfaces", format("%.2fx", shells_vs_iso), "<= 3x", shells_vs_iso <= 3},
   };
+  checks.push_back(against_vtk(s.vtk_volume, "projected tetrahedra (OpenGL)", 2));
+  checks.push_back(against_vtk(s.vtk_volume, "ray cast, linear integrator", 10));
+  return checks;
 }
 
 }  // namespace tetray::bench

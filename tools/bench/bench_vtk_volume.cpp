@@ -130,8 +130,10 @@ render::Framebuffer tetray_frame(const GyroidTwist& scene, const render::Camera&
   load_scene(scene, volume, bvh);
   const render::WalkStructure walk = render::build_walk_structure(volume);
   render::VolumeFragmentImage fragments;
+  render::VolumeRenderOptions options = dvr_options(1.0);
+  options.bvh = &bvh;  // as in situ: empty-space skipping on (nothing is empty here)
   ms = best_ms(kRepetitions,
-               [&] { fragments = render::render_volume(volume, walk, camera, dvr_options(1.0)); });
+               [&] { fragments = render::render_volume(volume, walk, camera, options); });
   return render::resolve(fragments);
 }
 

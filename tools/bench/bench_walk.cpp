@@ -11,11 +11,14 @@
 
 namespace tetray::bench {
 
-// Transparent below 0.2, rising to 4 per half unit at 1.5.
+// Dense: nowhere clear, faint below 0.2, rising to 4 per half unit at 1.5.
 render::VolumeRenderOptions dvr_options(double termination) {
   render::VolumeRenderOptions options;
-  options.transfer = {
-      render::find_colormap("viridis"), -1.5, 1.5, {{-1.5, 0}, {0.2, 0}, {0.8, 2}, {1.5, 4}}, 0.5};
+  options.transfer = {render::find_colormap("viridis"),
+                      -1.5,
+                      1.5,
+                      {{-1.5, 0.05}, {0.2, 0.1}, {0.8, 2}, {1.5, 4}},
+                      0.5};
   options.termination = termination;
   return options;
 }

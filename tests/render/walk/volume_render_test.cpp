@@ -35,7 +35,7 @@ render::TransferFunction transfer(const render::Colormap& map, double lo, double
 
 TEST(SegmentIntegral, ConstantIsBeerLambert) {
   const auto tf = transfer(kOrange, 0, 1, {{0, 1.7}}, 0.5);
-  const std::vector<double> breaks = tf.breakpoints();
+  const render::BreakpointTable breaks(tf);
   for (double length : {1e-6, 0.01, 0.3, 2.0, 9.0}) {
     const render::Gathered g = render::integrate_segment(tf, breaks, length, 0.4, 0.4);
     const double alpha = 1 - std::exp(-1.7 / 0.5 * length);
@@ -50,7 +50,7 @@ TEST(SegmentIntegral, LinearExtinctionAndLinearColorMatchClosedForms) {
   const auto ramp = transfer(kOrange, 0, 1, {{0, 0.2}, {1, 3.2}});
   for (double length : {0.01, 0.7, 4.0}) {
     const render::Gathered g =
-        render::integrate_segment(ramp, ramp.breakpoints(), length, 0.0, 1.0);
+        render::integrate_segment(ramp, render::BreakpointTable(ramp), length, 0.0, 1.0);
     const double depth = 0.5 * (0.2 + 3.2) * length;
     EXPECT_NEAR(g.transmittance, std::exp(-depth), 1e-15);
     EXPECT_NEAR(g.color[2], 0.25 * (1 - std::exp(-depth)), 1e-10);
@@ -61,7 +61,7 @@ TEST(SegmentIntegral, LinearExtinctionAndLinearColorMatchClosedForms) {
   const auto gray = transfer(kBlackToWhite, 0, 1, {{0, k}});
   for (double length : {0.05, 1.0, 6.0}) {
     const render::Gathered g =
-        render::integrate_segment(gray, gray.breakpoints(), length, 0.0, 1.0);
+        render::integrate_segment(gray, render::BreakpointTable(gray), length, 0.0, 1.0);
     const double kl = k * length;
     EXPECT_NEAR(g.color[1], (1 - std::exp(-kl) * (1 + kl)) / kl, 1e-10) << length;
   }
@@ -73,7 +73,7 @@ TEST(SegmentIntegral, BreakpointsSplitTheStretch) {
   const auto tent = transfer(kOrange, 0, 1, {{0, 0}, {0.5, 4}, {1, 0}});
   for (double from : {0.0, 1.0}) {
     const render::Gathered g =
-        render::integrate_segment(tent, tent.breakpoints(), 0.5, from, 1.0 - from);
+        render::integrate_segment(tent, render::BreakpointTable(tent), 0.5, from, 1.0 - from);
     EXPECT_NEAR(g.transmittance, std::exp(-1.0), 1e-15);
   }
 }
@@ -240,17 +240,6 @@ TEST(VolumeRender, EarlyTerminationStopsAtTheThreshold) {
     EXPECT_GE(b.rgba[4 * p + 3], 0.95f);
     EXPECT_NEAR(a.rgba[4 * p + 3], b.rgba[4 * p + 3], 0.05);
   }
-}
-
-// A point field per vertex of `volume`'s store, from its values per caller point.
-std::vector<float> per_vertex(const render::TetVolume& volume, const std::vector<double>& values) {
-  std::vector<float> out(volume.vertices.size());
-  for (std::size_t p = 0; p < values.size(); ++p) {
-    const std::uint32_t v =
-        volume.point_vertex.empty() ? static_cast<std::uint32_t>(p) : volume.point_vertex[p];
-    if (v != render::kNoVertex) out[v] = static_cast<float>(values[p]);
-  }
-  return out;
 }
 
 TEST(VolumeSurfaces, CrossingsMatchTheReference) {

@@ -32,6 +32,16 @@ RenderScene load_walk_scene(const BoxMesh& mesh) {
   return load_scene(mesh.points, mesh.tets, field);
 }
 
+std::vector<float> per_vertex(const render::TetVolume& volume, const std::vector<double>& values) {
+  std::vector<float> out(volume.vertices.size());
+  for (std::size_t p = 0; p < values.size(); ++p) {
+    const std::uint32_t v =
+        volume.point_vertex.empty() ? static_cast<std::uint32_t>(p) : volume.point_vertex[p];
+    if (v != render::kNoVertex) out[v] = static_cast<float>(values[p]);
+  }
+  return out;
+}
+
 std::vector<CrossedTet> crossed_by_brute_force(const render::TetVolume& volume, Vec3d origin,
                                                Vec3d direction, double min_length) {
   const Ray ray{origin, normalize(direction)};

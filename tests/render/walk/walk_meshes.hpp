@@ -24,6 +24,9 @@ struct MeshShape {
 BoxMesh make_walk_mesh(const MeshShape& shape);
 RenderScene load_walk_scene(const BoxMesh& mesh);
 
+// A point field per vertex of `volume`'s store, from its values per caller point.
+std::vector<float> per_vertex(const render::TetVolume& volume, const std::vector<double>& values);
+
 // One tet's stretch of a ray as the brute force finds it.
 struct CrossedTet {
   std::uint32_t tet;

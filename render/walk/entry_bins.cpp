@@ -1,0 +1,101 @@
+#include "render/walk/entry_bins.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "render/walk/face_crossing.hpp"
+
+namespace tetray::render {
+namespace {
+
+// Whether a ray from `eye` (local) can enter the domain through the face: the eye is not on
+// the tet's side of the face's plane (rounding taken generously: a face seen edge-on is kept).
+bool faces_eye(const TetVolume& volume, const BoundaryFace& face, Vec3d eye) {
+  const Vec3d a = vertex_position(volume, face.vertex[0]);
+  const Vec3d n = cross(vertex_position(volume, face.vertex[1]) - a,
+                        vertex_position(volume, face.vertex[2]) - a);
+  const Vec3d inward = dot(n, vertex_position(volume, face.opposite_vertex) - a) > 0 ? n : -1.0 * n;
+  const Vec3d to_eye = eye - a;
+  return dot(inward, to_eye) <= 1e-9 * length(inward) * length(to_eye);
+}
+
+struct TileRect {
+  int x0, y0, x1, y1;  // tiles, inclusive
+};
+
+// The tiles a triangle of points in front of the eye covers: the pixel rectangle of its corners'
+// projections (the inverse of CameraFrame::direction_at, as screen_bound), widened by a
+// thousandth of a pixel for rounding; nothing when a corner is not in front of the eye.
+std::optional<TileRect> tiles_of(const CameraFrame& frame, const Camera& camera,
+                                 const Vec3d (&corner)[3]) {
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  for (const Vec3d& point : corner) {
+    const Vec3d d = point - frame.eye;
+    const double depth = dot(d, frame.forward);
+    if (!(depth > 1e-9 * std::max(1.0, length(d)))) return std::nullopt;
+    const double px = 0.5 * camera.width * (dot(d, frame.right) / (depth * frame.scale_x) + 1.0);
+    const double py = 0.5 * camera.height * (1.0 - dot(d, frame.up) / (depth * frame.scale_y));
+    x_lo = std::min(x_lo, px);
+    x_hi = std::max(x_hi, px);
+    y_lo = std::min(y_lo, py);
+    y_hi = std::max(y_hi, py);
+  }
+  // Pixel i's ray passes through x = i + 0.5: the pixels whose centres lie in the rectangle.
+  constexpr double kMargin = 1e-3;
+  const double i0 = std::ceil(x_lo - kMargin - 0.5), i1 = std::floor(x_hi + kMargin - 0.5);
+  const double j0 = std::ceil(y_lo - kMargin - 0.5), j1 = std::floor(y_hi + kMargin - 0.5);
+  if (i1 < 0 || j1 < 0 || i0 > camera.width - 1 || j0 > camera.height - 1 || i0 > i1 || j0 > j1)
+    return TileRect{0, 0, -1, -1};  // no pixel's centre
+  const auto tile = [](double pixel, int size) {
+    return static_cast<int>(std::clamp(pixel, 0.0, size - 1.0)) / EntryBins::kTile;
+  };
+  return TileRect{tile(i0, camera.width), tile(j0, camera.height), tile(i1, camera.width),
+                  tile(j1, camera.height)};
+}
+
+}  // namespace
+
+EntryBins bin_entry_faces(const TetVolume& volume, const BoundaryFaces& boundary,
+                          const Camera& camera) {
+  EntryBins bins;
+  bins.tiles_x = (camera.width + EntryBins::kTile - 1) / EntryBins::kTile;
+  bins.tiles_y = (camera.height + EntryBins::kTile - 1) / EntryBins::kTile;
+  const std::size_t tiles = static_cast<std::size_t>(bins.tiles_x) * bins.tiles_y;
+  const CameraFrame frame = make_frame(camera);
+  const Vec3d eye = camera.eye - volume.origin;
+  // Each facing face's tiles, then a counting sort into the tiles in face order.
+  std::vector<std::pair<std::uint32_t, TileRect>> placed;
+  std::vector<std::uint32_t> counts(tiles + 1, 0);
+  for (std::uint32_t f = 0; f < boundary.faces.size(); ++f) {
+    const BoundaryFace& face = boundary.faces[f];
+    if (!faces_eye(volume, face, eye)) continue;
+    Vec3d corner[3];
+    for (int c = 0; c < 3; ++c) corner[c] = vertex_position(volume, face.vertex[c]) + volume.origin;
+    const std::optional<TileRect> covered = tiles_of(frame, camera, corner);
+    if (!covered) {
+      bins.everywhere.push_back(f);
+      continue;
+    }
+    const TileRect t = *covered;
+    if (t.x0 > t.x1) continue;  // between pixel centres or off the image
+    placed.push_back({f, t});
+    for (int y = t.y0; y <= t.y1; ++y) {
+      for (int x = t.x0; x <= t.x1; ++x) ++counts[static_cast<std::size_t>(y * bins.tiles_x + x)];
+    }
+  }
+  bins.begin.assign(tiles + 1, 0);
+  for (std::size_t k = 0; k < tiles; ++k) bins.begin[k + 1] = bins.begin[k] + counts[k];
+  bins.faces.resize(bins.begin[tiles]);
+  std::vector<std::uint32_t> cursor(bins.begin.begin(), bins.begin.end() - 1);
+  for (const auto& [f, t] : placed) {
+    for (int y = t.y0; y <= t.y1; ++y) {
+      for (int x = t.x0; x <= t.x1; ++x) {
+        bins.faces[cursor[static_cast<std::size_t>(y * bins.tiles_x + x)]++] = f;
+      }
+    }
+  }
+  return bins;
+}
+
+}  // namespace tetray::render
