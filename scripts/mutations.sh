@@ -155,7 +155,7 @@ while IFS=$'\t' read -r -u 3 id file from to tests; do
   if [ "$all" = 1 ]; then
     targets=(all)
   else
-    mapfile -t targets < <(test_targets "$regex")
+    mapfile -t targets < <(test_targets "$regex" | sed "/^$/d")  # none: a script-only test
   fi
   if [ "${targets[*]}" = - ]; then
     restore

@@ -2,13 +2,14 @@
 """The heat equation on a tet box with DOLFINx 0.5, rendered in situ by tetray.
 
     PYTHONPATH=build/python mpirun -np 2 /usr/bin/python3 tools/dolfinx/heat_insitu.py \
-        [--config FILE] [--cells N] [--steps N] [--dt DT] [--vtk DIR]
+        [--config FILE] [--cells N] [--steps N] [--dt DT] [--vtk DIR] [--without ghost|global_ids]
 
 du/dt - div(grad u) = f on [0, 1]^3, u = 0 on the boundary and at t = 0, with a Gaussian source f
 circling the box's vertical axis once over the run; P1 Lagrange in space, backward Euler in time.
 tetray reads DOLFINx's own arrays (README "Python", "DOLFINx"): the geometry's coordinates and
 dofmap without copies, the ghost cells flagged, the temperature per geometry node, and
-original_cell_index as the partition-independent tet ids. Images go to the config's output
+original_cell_index as the partition-independent tet ids; `--without` leaves the flags or the
+ids out (docs/coupling.md "DOLFINx" says what each does). Images go to the config's output
 directory, relative to the working directory. With --vtk DIR every step is also saved as DOLFINx
 writes it (DIR/temperature.pvd, one .pvtu of per-rank .vtu pieces per step), for
 `tetray-replay -c CONFIG --first-step 1 DIR/temperature.pvd`.
@@ -17,6 +18,7 @@ writes it (DIR/temperature.pvd, one .pvtu of per-rank .vtu pieces per step), for
 import argparse
 import math
 import pathlib
+import time
 
 import numpy as np
 import ufl
@@ -102,6 +104,8 @@ def main():
     parser.add_argument("--steps", type=int, default=24)
     parser.add_argument("--dt", type=float, default=0.005)
     parser.add_argument("--vtk", type=pathlib.Path, help="also save every step here")
+    parser.add_argument("--without", choices=["ghost", "global_ids"], action="append", default=[],
+                        help="leave out the ghost flags or the tet ids (to see what they do)")
     args = parser.parse_args()
 
     comm = MPI.COMM_WORLD
@@ -114,24 +118,36 @@ def main():
 
     series = io.VTKFile(comm, str(args.vtk / "temperature.pvd"), "w") if args.vtk else None
     solution.name = "temperature"
+    ghost = None if "ghost" in args.without else views.ghost
+    global_ids = None if "global_ids" in args.without else views.global_ids
+    solve_seconds, skipped_seconds = [], []
     with tetray.Adaptor(comm, args.config) as adaptor:
         for step in range(1, args.steps + 1):
             t = step * args.dt
             center.value[:] = source_center(t, period)
+            started = time.perf_counter()
             problem.solve()  # also updates the ghost dofs (scatter_forward)
+            solve_seconds.append(time.perf_counter() - started)
             previous.x.array[:] = solution.x.array
             if series:
                 series.write_function(solution, t)
-            if not adaptor.will_render(step, t):
-                continue
+            # Called at every step: the ones the trigger skips return at once (timed here).
+            rendering = adaptor.will_render(step, t)
+            started = time.perf_counter()
             report = adaptor.execute(
                 step, t, views.points, views.tets, {"temperature": views.per_node(solution)},
-                ghost=views.ghost, global_ids=views.global_ids,
+                ghost=ghost, global_ids=global_ids,
                 changes=tetray.Changes(geometry=False, topology=False))
+            if not rendering:
+                skipped_seconds.append(time.perf_counter() - started)
+                continue
             peak = comm.allreduce(float(solution.x.array.max(initial=0.0)), op=MPI.MAX)
             if comm.rank == 0:
                 print(f"step {step} t={t:.3f} max u={peak:.3f} bvh={report.bvh_decision} "
                       f"blocked {1e3 * report.seconds_blocked:.1f} ms", flush=True)
+    if comm.rank == 0 and skipped_seconds:
+        print(f"execute on a skipped step {1e6 * np.median(skipped_seconds):.1f} us, "
+              f"a solve {1e3 * np.median(solve_seconds):.1f} ms (medians, rank 0)", flush=True)
     if series:
         series.close()
 
