@@ -150,13 +150,17 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
     RowOutput& row = rows[static_cast<std::size_t>(j)];
     row.counts.resize(static_cast<std::size_t>(camera.width));
     for (int i = 0; i < camera.width; ++i) {
+      // A ray that starts outside the mesh and has no face to enter through sees nothing.
+      const EntryCandidates candidates = bins.at(i, j);
+      if (options.eye_tet == kBoundaryFace && candidates.tile.empty() &&
+          candidates.everywhere.empty())
+        continue;
       const Vec3d direction = pixel_direction(frame, camera, i, j);
       const RayFrame ray(eye, direction);
       const std::size_t before = row.fragments.size();
       RayGatherer gather(volume, options, breakpoints, ray.direction,
                          dot(ray.direction, frame.forward), row.fragments);
       WalkCounters counters;
-      const EntryCandidates candidates = bins.at(i, j);
       walk_ray(
           mesh, ray, std::numeric_limits<double>::infinity(),
           [&](const WalkSegment& s) { return gather.add(s); }, counters, options.eye_tet,
