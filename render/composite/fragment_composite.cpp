@@ -35,6 +35,13 @@ BasicFragmentImage<F> merge_ranks(const BasicFragmentImage<F>& shape,
   }
   std::vector<F> layers;
   for (std::size_t p = 0; p < pixels; ++p) {
+    // Most pixels of an image hold no fragment on any rank: nothing to gather or sort.
+    std::uint32_t total = 0;
+    for (std::size_t r = 0; r < cursor.size(); ++r) total |= counts[r * pixels + p];
+    if (total == 0) {
+      out.begin.push_back(static_cast<std::uint32_t>(out.fragments.size()));
+      continue;
+    }
     layers.clear();
     for (std::size_t r = 0; r < cursor.size(); ++r) {
       const std::uint32_t n = counts[r * pixels + p];
