@@ -163,7 +163,7 @@ class Adaptor::Impl {
   std::vector<HandedOver> handed_over_;
   std::vector<SceneState> scenes_;
   std::vector<FieldVolume> volumes_;
-  std::vector<WalkCache> walks_;  // per volume, built for volume scenes only
+  std::vector<WalkCache> walks_;  // per volume, built for volume scenes and clip caps only
   std::vector<render::SharedGradients> shared_gradients_;  // per volume, smooth on several ranks
   // Per volume, this step's update on this rank: kGradientsUpdated or kGradientsLoaded (a new
   // topology or set of rendered tets, so new shared vertices), for smooth volumes only.

@@ -6,6 +6,7 @@
 #include "adaptor/step/step_runner.hpp"
 #include "render/trace/layer_shading.hpp"
 #include "render/walk/clip_cap.hpp"
+#include "render/walk/volume_render.hpp"
 
 namespace tetray {
 
@@ -57,8 +58,10 @@ void Adaptor::Impl::trace_surface_view(SceneState& s, std::size_t k, std::size_t
     if (s.cap_colormap != nullptr) {
       const render::ClipCap cap{s.cap_colormap, static_cast<float>(s.cap_range.lo),
                                 static_cast<float>(s.cap_range.hi), s.cap_field};
-      render::draw_clip_cap(s.images[v], volume.volume(), volume.bvh(), camera, options, cap,
-                            terms);
+      // The walk structure's adjacency lets a cap point be found from the previous pixel's tet.
+      const render::WalkStructure& walk = walks_[s.volume].get(volume.volume());
+      render::draw_clip_cap(s.images[v], volume.volume(), volume.bvh(), camera, options, cap, terms,
+                            &walk.adjacency);
     }
   }
 }

@@ -100,11 +100,13 @@ struct CapFrame {
   const ClipCap& cap;
   Vec3d eye;  // local
   RegionSides sides;
+  const FaceAdjacency<Tet20>* adjacency;  // null: no walking
 };
 
 // Collects the row's rays whose entry point into the region lies in one of this rank's tets.
-// Neighbouring pixels' points mostly share a tet: the last one found is tried first, which
-// gives locate_point's answer whenever the point is strictly inside it.
+// Neighbouring pixels' points mostly share a tet or lie a face or two apart: the last one found
+// is tried first and walked from, which gives locate_point's answer whenever the walk ends with
+// the point strictly inside a tet.
 void find_cap_hits(const CapFrame& f, int j, CapRow& row) {
   std::optional<std::uint32_t> last;
   for (int i = 0; i < f.camera.width; ++i) {
@@ -113,7 +115,10 @@ void find_cap_hits(const CapFrame& f, int j, CapRow& row) {
     if (!entry) continue;
     const Vec3d point = f.eye + entry->t * d;
     std::optional<PointLocation> at;
-    if (last) at = locate_strictly_inside(f.volume, *last, point);
+    if (last) {
+      at = f.adjacency != nullptr ? locate_by_walking(f.volume, *f.adjacency, *last, point)
+                                  : locate_strictly_inside(f.volume, *last, point);
+    }
     if (!at) at = locate_point(f.volume, f.bvh, point);
     if (!at) continue;
     last = at->tet;
@@ -180,7 +185,7 @@ std::optional<RegionEntry> enter_region(const ClipRegion& region, Vec3d origin, 
 
 void draw_clip_cap(Framebuffer& image, const TetVolume& volume, const Bvh& bvh,
                    const Camera& camera, const TraceOptions& options, const ClipCap& cap,
-                   std::vector<Framebuffer>* shadow_terms) {
+                   std::vector<Framebuffer>* shadow_terms, const FaceAdjacency<Tet20>* adjacency) {
   if (cap.colormap == nullptr || options.clip.empty() || bvh.empty()) return;
   const CameraFrame view = make_frame(camera);
   const CapFrame f{volume,
@@ -190,7 +195,8 @@ void draw_clip_cap(Framebuffer& image, const TetVolume& volume, const Bvh& bvh,
                    options,
                    cap,
                    view.eye - volume.origin,
-                   region_sides(options.clip, volume.origin)};
+                   region_sides(options.clip, volume.origin),
+                   adjacency};
   const ShadeContext shade{volume, view, {}, nullptr, options};
   const LocalLights lights = local_lights(options.lights, volume.origin);
   const LocalLights* lit = options.lights.headlight_only() ? nullptr : &lights;

@@ -1,6 +1,7 @@
 #include "render/walk/point_locate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "render/bvh/bounds.hpp"
@@ -21,10 +22,23 @@ bool box_contains(const Bounds4& b, Vec3d p) {
   return true;
 }
 
-std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
+// The point's barycentric weights in tet t, inside or not; false for a degenerate tet.
+bool weights_in(const TetVolume& volume, std::uint32_t t, Vec3d p, std::array<double, 4>& w) {
   const Tet& tet = volume.tets[t];
   Vec3d x[4];
   for (int c = 0; c < 4; ++c) x[c] = vertex_position(volume, static_cast<std::uint32_t>(tet.v[c]));
+  const Vec3d e1 = x[1] - x[0], e2 = x[2] - x[0], e3 = x[3] - x[0], q = p - x[0];
+  const double det = dot(e1, cross(e2, e3));
+  if (det == 0) return false;
+  w[1] = dot(q, cross(e2, e3)) / det;
+  w[2] = dot(e1, cross(q, e3)) / det;
+  w[3] = dot(e1, cross(e2, q)) / det;
+  w[0] = 1.0 - w[1] - w[2] - w[3];
+  return true;
+}
+
+std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
+  const Tet& tet = volume.tets[t];
   PointLocation at{t, {}};
   const Vec3f pf = static_cast<Vec3f>(p);
   for (int c = 0; c < 4; ++c) {
@@ -34,17 +48,15 @@ std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Ve
       return at;
     }
   }
-  const Vec3d e1 = x[1] - x[0], e2 = x[2] - x[0], e3 = x[3] - x[0], q = p - x[0];
-  const double det = dot(e1, cross(e2, e3));
-  if (det == 0) return std::nullopt;
-  at.weight[1] = dot(q, cross(e2, e3)) / det;
-  at.weight[2] = dot(e1, cross(q, e3)) / det;
-  at.weight[3] = dot(e1, cross(e2, q)) / det;
-  at.weight[0] = 1.0 - at.weight[1] - at.weight[2] - at.weight[3];
+  if (!weights_in(volume, t, p, at.weight)) return std::nullopt;
   for (double w : at.weight) {
     if (w < -kFaceSlack) return std::nullopt;
   }
   return at;
+}
+
+bool strictly_inside(const PointLocation& at) {
+  return std::all_of(at.weight.begin(), at.weight.end(), [](double w) { return w > kFaceSlack; });
 }
 
 }  // namespace
@@ -52,11 +64,30 @@ std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Ve
 std::optional<PointLocation> locate_strictly_inside(const TetVolume& volume, std::uint32_t tet,
                                                     Vec3d local) {
   std::optional<PointLocation> at = in_tet(volume, tet, local);
-  if (!at) return at;
-  for (double w : at->weight) {
-    if (w <= kFaceSlack) return std::nullopt;
-  }
+  if (!at || !strictly_inside(*at)) return std::nullopt;
   return at;
+}
+
+std::optional<PointLocation> locate_by_walking(const TetVolume& volume,
+                                               const FaceAdjacency<Tet20>& adjacency,
+                                               std::uint32_t from, Vec3d local) {
+  PointLocation at{from, {}};
+  for (int step = 0; step <= kLocateWalkSteps; ++step) {
+    if (!weights_in(volume, at.tet, local, at.weight)) return std::nullopt;
+    if (strictly_inside(at)) return at;  // in_tet's weights: the same computation
+    if (step == kLocateWalkSteps) break;
+    // Across the face opposite the vertex of the most negative weight.
+    const auto c =
+        static_cast<int>(std::min_element(at.weight.begin(), at.weight.end()) - at.weight.begin());
+    if (!(at.weight[static_cast<std::size_t>(c)] < 0)) return std::nullopt;  // on a face
+    const Tet& tet = volume.tets[at.tet];
+    const auto v = [&](int k) { return static_cast<std::uint32_t>(tet.v[(c + k) % 4]); };
+    const std::uint32_t next =
+        adjacency.tets[at.tet].neighbor[vertex_order(v(0), v(1), v(2), v(3))];
+    if (next == kBoundaryFace) return std::nullopt;
+    at.tet = next;
+  }
+  return std::nullopt;
 }
 
 std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local) {

@@ -10,6 +10,7 @@
 
 #include "render/bvh/bvh.hpp"
 #include "render/volume/tet_volume.hpp"
+#include "render/walk/face_adjacency.hpp"
 
 namespace tetray::render {
 
@@ -28,5 +29,14 @@ std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bv
 // give the same answer: a cheap first try for a point near the last one located.
 std::optional<PointLocation> locate_strictly_inside(const TetVolume& volume, std::uint32_t tet,
                                                     Vec3d local);
+
+// The same from tet `from` near the point: walks across the face the point lies furthest
+// outside of (the neighbour from the face adjacency), at most kLocateWalkSteps tets, to a tet
+// holding the point strictly inside; empty when the walk leaves this rank's tets, meets a
+// degenerate tet, runs out of steps or ends with the point on a face (then ask locate_point).
+inline constexpr int kLocateWalkSteps = 8;
+std::optional<PointLocation> locate_by_walking(const TetVolume& volume,
+                                               const FaceAdjacency<Tet20>& adjacency,
+                                               std::uint32_t from, Vec3d local);
 
 }  // namespace tetray::render

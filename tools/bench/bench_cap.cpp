@@ -34,6 +34,9 @@ CapFigures measure_cap(const GyroidTwist& scene, const render::Camera& camera) {
   render::load_vertex_field(
       volume, {scene.field.data(), render::ScalarKind::f64, scene.field.size()}, field);
   const render::ClipCap cap{render::find_colormap("viridis"), -2, 2, field};
+  // As the adaptor: the face adjacency of the volume, built once per topology.
+  const render::FaceAdjacency<render::Tet20> adjacency =
+      render::build_face_adjacency<render::Tet20>(volume);
   const render::IsoSurface surface = bench_surface();
   const std::span<const render::IsoSurface> surfaces{&surface, 1};
   const render::TraceOptions plain{}, clipped = with_plane_facing(camera);
@@ -42,7 +45,8 @@ CapFigures measure_cap(const GyroidTwist& scene, const render::Camera& camera) {
     return std::function<double()>([&, options, capped] {
       return time_ms([&] {
         render::trace_into(image, volume, bvh, camera, surfaces, options);
-        if (capped) render::draw_clip_cap(image, volume, bvh, camera, options, cap);
+        if (capped)
+          render::draw_clip_cap(image, volume, bvh, camera, options, cap, nullptr, &adjacency);
       });
     });
   };

@@ -6,12 +6,15 @@
 // analytic value there, lit with the plane's normal.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
 
 #include "render/walk/clip_cap.hpp"
+#include "render/walk/point_locate.hpp"
 #include "support/reference_intersector.hpp"
 #include "support/render_fixtures.hpp"
 
@@ -35,6 +38,7 @@ struct CapScene {
   RenderScene scene;
   std::vector<float> cap_field;
   std::vector<render::IsoSurface> surfaces;
+  render::FaceAdjacency<render::Tet20> adjacency;
 };
 
 CapScene cap_scene() {
@@ -43,11 +47,14 @@ CapScene cap_scene() {
   const auto iso_field = sample_field(mesh.points, [](Vec3d p) {
     return std::sin(3 * p.x) * std::cos(3 * p.y) + std::sin(3 * p.z) * std::cos(2 * p.x);
   });
-  CapScene s{
-      load_scene(mesh.points, mesh.tets, iso_field), {}, make_surfaces(std::vector<double>{0.0})};
+  CapScene s{load_scene(mesh.points, mesh.tets, iso_field),
+             {},
+             make_surfaces(std::vector<double>{0.0}),
+             {}};
   const std::vector<double> linear = sample_field(mesh.points, cap_value);
   render::load_vertex_field(
       s.scene.volume, {linear.data(), render::ScalarKind::f64, mesh.point_count()}, s.cap_field);
+  s.adjacency = render::build_face_adjacency<render::Tet20>(s.scene.volume);
   return s;
 }
 
@@ -116,8 +123,15 @@ CapCounts compare_caps(const CapScene& s, const render::ClipRegion& clip,
   options.clip = clip;
   render::Framebuffer image =
       render::trace(s.scene.volume, s.scene.bvh, camera, s.surfaces, options);
-  render::draw_clip_cap(image, s.scene.volume, s.scene.bvh, camera, options,
-                        {&colormap, static_cast<float>(lo), static_cast<float>(hi), s.cap_field});
+  const render::ClipCap cap{&colormap, static_cast<float>(lo), static_cast<float>(hi), s.cap_field};
+  // Located through the BVH alone, and walking from the previous pixel's tet as the adaptor
+  // does: the same image, bit for bit.
+  render::Framebuffer walked = image;
+  render::draw_clip_cap(image, s.scene.volume, s.scene.bvh, camera, options, cap);
+  render::draw_clip_cap(walked, s.scene.volume, s.scene.bvh, camera, options, cap, nullptr,
+                        &s.adjacency);
+  EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), walked.rgba.begin()));
+  EXPECT_TRUE(std::equal(image.hit.begin(), image.hit.end(), walked.hit.begin()));
   const ReferenceIntersector reference(s.scene.volume, isovalues_of(s.surfaces), clip);
   const std::vector<ReferenceHit> surfaces = reference.trace_image(camera);
   const ReferenceCamera rc(camera);
@@ -169,6 +183,31 @@ void expect_caps_agree(const render::ClipRegion& clip, const std::string& label)
     caps += c.caps;
   }
   EXPECT_GT(caps, static_cast<std::size_t>(kWidth * kHeight / 4)) << label;
+}
+
+// From the tet of a point a fraction of a cell away, the walk ends where the BVH's search does,
+// weights included, or gives up (then the cap asks the BVH).
+TEST(PointLocate, WalkingFindsTheTetOfTheBvhsSearch) {
+  const CapScene s = cap_scene();
+  const render::TetVolume& volume = s.scene.volume;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> inside(-0.95, 0.95), step(-0.2, 0.2);
+  int found = 0, tried = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3d a{inside(rng), inside(rng), inside(rng)};
+    const Vec3d b = a + Vec3d{step(rng), step(rng), step(rng)};
+    const auto from = render::locate_point(volume, s.scene.bvh, a - volume.origin);
+    const auto want = render::locate_point(volume, s.scene.bvh, b - volume.origin);
+    if (!from || !want) continue;
+    ++tried;
+    const auto got = render::locate_by_walking(volume, s.adjacency, from->tet, b - volume.origin);
+    if (!got) continue;
+    ++found;
+    ASSERT_EQ(got->tet, want->tet) << "point " << k;
+    for (int c = 0; c < 4; ++c) ASSERT_EQ(got->weight[c], want->weight[c]) << "point " << k;
+  }
+  EXPECT_GT(tried, 1500);
+  EXPECT_GT(found, tried * 3 / 4);  // the walk does the work, not the fallback
 }
 
 TEST(ClipCap, PlaneCapAgreesWithTheReference) { expect_caps_agree(tilted_plane(), "plane"); }
