@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "render/volume/tet_volume.hpp"
 #include "render/walk/ray_frame.hpp"
@@ -32,26 +33,41 @@ struct FaceCrossing {
   double g = 0;  // the second field's value, or f without one
 };
 
-// `second`: a second field per vertex of the vertex store, or empty.
+// `second`: a second field per vertex of the vertex store, or empty. The weights are each
+// corner's own edge determinant, the same from both tets of the face; the sums run over the
+// corners in vertex-index order and interpolate from the first corner, so the crossing is the
+// same to the last bit whichever tet, walk or rank asks, and a field that is constant over the
+// face crosses it at exactly that value (an isosurface lying in a face is met the same way on
+// every rank count).
 inline FaceCrossing cross_face(const TetVolume& volume, const RayFrame& frame,
                                const ProjectedFace& face, std::span<const float> second = {}) {
   const Point2* p = face.point;
   double w[3] = {std::max(0.0, edge_determinant(p[1], p[2])),
                  std::max(0.0, edge_determinant(p[2], p[0])),
                  std::max(0.0, edge_determinant(p[0], p[1]))};
-  double sum = w[0] + w[1] + w[2];
+  // Corners a < b < c by vertex index.
+  int a = 0, b = 1, c = 2;
+  if (face.vertex[b] < face.vertex[a]) std::swap(a, b);
+  if (face.vertex[c] < face.vertex[b]) std::swap(b, c);
+  if (face.vertex[b] < face.vertex[a]) std::swap(a, b);
+  double sum = w[a] + w[b] + w[c];
   if (!(sum > 0)) {  // the face seen edge-on: any point of it is as good
     w[0] = w[1] = w[2] = 1;
     sum = 3;
   }
-  Vec3d point{};
-  double f = 0, g = 0;
-  for (int c = 0; c < 3; ++c) {
-    point = point + (w[c] / sum) * vertex_position(volume, face.vertex[c]);
-    f += (w[c] / sum) * volume.vertices[face.vertex[c]].f;
-    if (!second.empty()) g += (w[c] / sum) * second[face.vertex[c]];
-  }
-  return {frame.parameter(point), f, second.empty() ? f : g};
+  const double wb = w[b] / sum, wc = w[c] / sum;
+  const auto mix = [&](double va, double vb, double vc) {
+    return va + wb * (vb - va) + wc * (vc - va);
+  };
+  const Vec3d xa = vertex_position(volume, face.vertex[a]);
+  const Vec3d point = xa + wb * (vertex_position(volume, face.vertex[b]) - xa) +
+                      wc * (vertex_position(volume, face.vertex[c]) - xa);
+  const auto value = [&](auto of) {
+    return mix(of(face.vertex[a]), of(face.vertex[b]), of(face.vertex[c]));
+  };
+  const double f = value([&](std::uint32_t v) { return double{volume.vertices[v].f}; });
+  const double g = second.empty() ? f : value([&](std::uint32_t v) { return double{second[v]}; });
+  return {frame.parameter(point), f, g};
 }
 
 }  // namespace tetray::render

@@ -1,14 +1,18 @@
 // The walk against the brute force: on random rays through jittered boxes, slivers, non-convex
 // boxes with holes and a box a million units from the origin, the walk visits exactly the tets
 // that testing every tet finds, in order, with the same stretches and field values; rays through
-// vertices and edges (exactly, on an unjittered grid) neither lose nor repeat a stretch.
+// vertices and edges (exactly, on an unjittered grid) neither lose nor repeat a stretch. Where a
+// ray crosses a face, the point and the fields are the same bits whichever corner the face is
+// held from, so an isosurface lying in faces is met the same way on every ray and rank count.
 #include "render/walk/tet_walk.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <set>
 
+#include "render/walk/surface_crossing.hpp"
 #include "walk_meshes.hpp"
 
 namespace tetray::test {
@@ -153,6 +157,88 @@ TEST(TetWalk, RaysThroughVerticesAndEdgesCoverTheBoxOnce) {
     }
   }
   EXPECT_EQ(rays, 98);
+}
+
+TEST(FaceCrossing, TheSameBitsFromEveryCornerOrder) {
+  const BoxMesh box = jittered_box(4, 0.2);
+  const RenderScene scene = load_scene(box.points, box.tets, random_field(box.point_count(), 2));
+  const render::TetVolume& volume = scene.volume;
+  const std::vector<float> second = per_vertex(volume, random_field(box.point_count(), 8));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.05, 0.95);
+  int compared = 0;
+  for (std::uint32_t t = 0; t < volume.tets.size(); t += 3) {
+    const render::Tet& tet = volume.tets[t];
+    std::uint32_t v[3];
+    for (int c = 0; c < 3; ++c) v[c] = static_cast<std::uint32_t>(tet.v[c]);
+    // A ray from outside through a point inside the face.
+    double a = unit(rng), b = unit(rng) * (1 - a);
+    const Vec3d x0 = render::vertex_position(volume, v[0]),
+                x1 = render::vertex_position(volume, v[1]),
+                x2 = render::vertex_position(volume, v[2]);
+    const Vec3d target = x0 + a * (x1 - x0) + b * (x2 - x0);
+    const render::RayFrame frame(target + Vec3d{3.1, -1.7, 2.3}, Vec3d{-3.1, 1.7, -2.3});
+    render::ProjectedFace face{};
+    for (int c = 0; c < 3; ++c) {
+      face.vertex[c] = v[c];
+      face.point[c] = frame.project(render::vertex_position(volume, v[c]));
+    }
+    if (render::ray_side(face.point[0], v[0], face.point[1], v[1]) < 0) {
+      std::swap(face.vertex[1], face.vertex[2]);
+      std::swap(face.point[1], face.point[2]);
+    }
+    const render::FaceCrossing first = render::cross_face(volume, frame, face, second);
+    for (int turn = 1; turn < 3; ++turn) {
+      render::ProjectedFace turned{};
+      for (int c = 0; c < 3; ++c) {
+        turned.vertex[c] = face.vertex[(c + turn) % 3];
+        turned.point[c] = face.point[(c + turn) % 3];
+      }
+      const render::FaceCrossing other = render::cross_face(volume, frame, turned, second);
+      ASSERT_EQ(other.t, first.t) << "tet " << t;
+      ASSERT_EQ(other.f, first.f) << "tet " << t;
+      ASSERT_EQ(other.g, first.g) << "tet " << t;
+    }
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+}
+
+// g = 0.5 - |z| peaks at 0.5 on the grid's plane z = 0, so the isosurface 0.5 lies in faces:
+// every ray through the plane meets it the same number of times.
+TEST(FaceCrossing, ASurfaceLyingInFacesIsMetAlikeByEveryRay) {
+  const BoxMesh grid = jittered_box(6, 0.0);
+  const RenderScene scene = load_walk_scene(grid);
+  const std::vector<float> ridge = per_vertex(
+      scene.volume, sample_field(grid.points, [](Vec3d x) { return 0.5 - std::abs(x.z); }));
+  const render::FaceAdjacency<render::Tet20> adjacency =
+      render::build_face_adjacency<render::Tet20>(scene.volume);
+  const render::BoundaryFaces boundary =
+      render::build_boundary_faces(scene.volume, adjacency.boundary);
+  const std::vector<render::IsoSurface> surfaces = {{0.5f, {}, 0.5f}};
+  std::set<int> met;
+  int rays = 0;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> across(-0.9, 0.9);
+  for (int k = 0; k < 400; ++k) {
+    const Vec3d at{across(rng), across(rng), 0.0};
+    const Vec3d origin = at + Vec3d{0.37, -0.21, 2.0} - scene.volume.origin;
+    const render::RayFrame frame(origin, Vec3d{-0.37, 0.21, -2.0});
+    render::WalkCounters counters;
+    int crossings = 0;
+    for (const render::WalkSegment& s : render::walk_segments(
+             render::WalkMesh<render::Tet20>{scene.volume, adjacency, boundary, ridge}, frame,
+             std::numeric_limits<double>::infinity(), std::numeric_limits<std::size_t>::max(),
+             counters)) {
+      render::SurfaceCrossing found[render::kMaxIsovalues];
+      crossings += render::surface_crossings(surfaces, s.g_in, s.g_out, found);
+    }
+    met.insert(crossings);
+    ++rays;
+  }
+  EXPECT_EQ(rays, 400);
+  EXPECT_EQ(met.size(), 1u) << "rays met the surface " << *met.begin() << " to " << *met.rbegin()
+                            << " times";
 }
 
 TEST(TetWalk, EarlyStopEndsTheWalk) {
