@@ -31,16 +31,19 @@ bool tet_busy(const TetVolume& volume, const Tet& tet, const TransferFunction& t
   Range f, g;
   for (const std::int32_t v : tet.v) {
     const double value = volume.vertices[static_cast<std::size_t>(v)].f;
+    const double second =
+        surface_field.empty() ? value : double{surface_field[static_cast<std::size_t>(v)]};
+    // A value that is not a number: the walk would carry it, so the tet is never skipped.
+    if (std::isnan(value) || std::isnan(second)) return true;
     f.grow(value);
-    g.grow(surface_field.empty() ? value : double{surface_field[static_cast<std::size_t>(v)]});
+    g.grow(second);
   }
   const double f_slack = slack(f.lo, f.hi), g_slack = slack(g.lo, g.hi);
-  // A tet without a finite value keeps an empty range and stays busy.
-  if (!transfer.clear_over(f.lo - f_slack, f.hi + f_slack) || !(f.lo <= f.hi)) return true;
+  if (!transfer.clear_over(f.lo - f_slack, f.hi + f_slack)) return true;
   for (const IsoSurface& s : surfaces) {
     if (s.value >= g.lo - g_slack && s.value <= g.hi + g_slack) return true;
   }
-  return !(g.lo <= g.hi);
+  return false;
 }
 
 struct Candidate {

@@ -24,16 +24,26 @@ struct TileRect {
   int x0, y0, x1, y1;  // tiles, inclusive
 };
 
+// Where a face projects: tiles, nowhere a ray from the eye can reach it (every corner behind
+// the eye), or across the eye's plane (it projects nowhere: every ray must test it).
+enum class Placement { tiles, behind, across };
+
 // The tiles a triangle of points in front of the eye covers: the pixel rectangle of its corners'
 // projections (the inverse of CameraFrame::direction_at, as screen_bound), widened by a
-// thousandth of a pixel for rounding; nothing when a corner is not in front of the eye.
-std::optional<TileRect> tiles_of(const CameraFrame& frame, const Camera& camera,
-                                 const Vec3d (&corner)[3]) {
+// thousandth of a pixel for rounding.
+Placement place(const CameraFrame& frame, const Camera& camera, const Vec3d (&corner)[3],
+                TileRect& tiles) {
+  int behind = 0;
+  for (const Vec3d& point : corner) {
+    const Vec3d d = point - frame.eye;
+    behind += dot(d, frame.forward) < -1e-6 * std::max(1.0, length(d));
+  }
+  if (behind == 3) return Placement::behind;
   double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
   for (const Vec3d& point : corner) {
     const Vec3d d = point - frame.eye;
     const double depth = dot(d, frame.forward);
-    if (!(depth > 1e-9 * std::max(1.0, length(d)))) return std::nullopt;
+    if (!(depth > 1e-9 * std::max(1.0, length(d)))) return Placement::across;
     const double px = 0.5 * camera.width * (dot(d, frame.right) / (depth * frame.scale_x) + 1.0);
     const double py = 0.5 * camera.height * (1.0 - dot(d, frame.up) / (depth * frame.scale_y));
     x_lo = std::min(x_lo, px);
@@ -45,13 +55,16 @@ std::optional<TileRect> tiles_of(const CameraFrame& frame, const Camera& camera,
   constexpr double kMargin = 1e-3;
   const double i0 = std::ceil(x_lo - kMargin - 0.5), i1 = std::floor(x_hi + kMargin - 0.5);
   const double j0 = std::ceil(y_lo - kMargin - 0.5), j1 = std::floor(y_hi + kMargin - 0.5);
-  if (i1 < 0 || j1 < 0 || i0 > camera.width - 1 || j0 > camera.height - 1 || i0 > i1 || j0 > j1)
-    return TileRect{0, 0, -1, -1};  // no pixel's centre
+  if (i1 < 0 || j1 < 0 || i0 > camera.width - 1 || j0 > camera.height - 1 || i0 > i1 || j0 > j1) {
+    tiles = {0, 0, -1, -1};  // no pixel's centre
+    return Placement::tiles;
+  }
   const auto tile = [](double pixel, int size) {
     return static_cast<int>(std::clamp(pixel, 0.0, size - 1.0)) / EntryBins::kTile;
   };
-  return TileRect{tile(i0, camera.width), tile(j0, camera.height), tile(i1, camera.width),
-                  tile(j1, camera.height)};
+  tiles = {tile(i0, camera.width), tile(j0, camera.height), tile(i1, camera.width),
+           tile(j1, camera.height)};
+  return Placement::tiles;
 }
 
 }  // namespace
@@ -66,26 +79,36 @@ EntryBins bin_entry_faces(const TetVolume& volume, const BoundaryFaces& boundary
   const Vec3d eye = camera.eye - volume.origin;
   // Each facing face's tiles, then a counting sort into the tiles in face order.
   std::vector<std::pair<std::uint32_t, TileRect>> placed;
-  std::vector<std::uint32_t> counts(tiles + 1, 0);
+  std::vector<std::uint64_t> counts(tiles + 1, 0);
+  std::uint64_t total = 0;
   for (std::uint32_t f = 0; f < boundary.faces.size(); ++f) {
     const BoundaryFace& face = boundary.faces[f];
     if (!faces_eye(volume, face, eye)) continue;
     Vec3d corner[3];
     for (int c = 0; c < 3; ++c) corner[c] = vertex_position(volume, face.vertex[c]) + volume.origin;
-    const std::optional<TileRect> covered = tiles_of(frame, camera, corner);
-    if (!covered) {
+    TileRect t{};
+    const Placement where = place(frame, camera, corner, t);
+    if (where == Placement::behind) continue;
+    if (where == Placement::across) {
       bins.everywhere.push_back(f);
       continue;
     }
-    const TileRect t = *covered;
     if (t.x0 > t.x1) continue;  // between pixel centres or off the image
     placed.push_back({f, t});
     for (int y = t.y0; y <= t.y1; ++y) {
       for (int x = t.x0; x <= t.x1; ++x) ++counts[static_cast<std::size_t>(y * bins.tiles_x + x)];
     }
+    total +=
+        static_cast<std::uint64_t>(t.x1 - t.x0 + 1) * static_cast<std::uint64_t>(t.y1 - t.y0 + 1);
+  }
+  // Faces spread over many tiles (slivers across the image, faces near the eye) would make the
+  // lists larger than the tree is worth: the rays then search the tree.
+  if (total > 16 * (static_cast<std::uint64_t>(boundary.faces.size()) + tiles)) {
+    return EntryBins{};
   }
   bins.begin.assign(tiles + 1, 0);
-  for (std::size_t k = 0; k < tiles; ++k) bins.begin[k + 1] = bins.begin[k] + counts[k];
+  for (std::size_t k = 0; k < tiles; ++k)
+    bins.begin[k + 1] = bins.begin[k] + static_cast<std::uint32_t>(counts[k]);
   bins.faces.resize(bins.begin[tiles]);
   std::vector<std::uint32_t> cursor(bins.begin.begin(), bins.begin.end() - 1);
   for (const auto& [f, t] : placed) {

@@ -35,7 +35,7 @@ struct FaceCrossing {
 
 // `second`: a second field per vertex of the vertex store, or empty. The weights are each
 // corner's own edge determinant, the same from both tets of the face; the sums run over the
-// corners in vertex-index order and interpolate from the first corner, so the crossing is the
+// corners in order of position and interpolate from the first corner, so the crossing is the
 // same to the last bit whichever tet, walk or rank asks, and a field that is constant over the
 // face crosses it at exactly that value (an isosurface lying in a face is met the same way on
 // every rank count).
@@ -45,11 +45,20 @@ inline FaceCrossing cross_face(const TetVolume& volume, const RayFrame& frame,
   double w[3] = {std::max(0.0, edge_determinant(p[1], p[2])),
                  std::max(0.0, edge_determinant(p[2], p[0])),
                  std::max(0.0, edge_determinant(p[0], p[1]))};
-  // Corners a < b < c by vertex index.
+  // Corners a < b < c by position (the same on every rank, unlike the vertex indices, which
+  // each rank's store numbers its own way), by index only where two coincide.
+  const auto before = [&](int i, int j) {
+    const Vertex& vi = volume.vertices[face.vertex[i]];
+    const Vertex& vj = volume.vertices[face.vertex[j]];
+    if (vi.x != vj.x) return vi.x < vj.x;
+    if (vi.y != vj.y) return vi.y < vj.y;
+    if (vi.z != vj.z) return vi.z < vj.z;
+    return face.vertex[i] < face.vertex[j];
+  };
   int a = 0, b = 1, c = 2;
-  if (face.vertex[b] < face.vertex[a]) std::swap(a, b);
-  if (face.vertex[c] < face.vertex[b]) std::swap(b, c);
-  if (face.vertex[b] < face.vertex[a]) std::swap(a, b);
+  if (before(b, a)) std::swap(a, b);
+  if (before(c, b)) std::swap(b, c);
+  if (before(b, a)) std::swap(a, b);
   double sum = w[a] + w[b] + w[c];
   if (!(sum > 0)) {  // the face seen edge-on: any point of it is as good
     w[0] = w[1] = w[2] = 1;

@@ -37,16 +37,25 @@ bool weights_in(const TetVolume& volume, std::uint32_t t, Vec3d p, std::array<do
   return true;
 }
 
-std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
-  const Tet& tet = volume.tets[t];
-  PointLocation at{t, {}};
+// The corner of tet t that the point equals in float, or -1.
+int vertex_at(const TetVolume& volume, std::uint32_t t, Vec3d p) {
   const Vec3f pf = static_cast<Vec3f>(p);
   for (int c = 0; c < 4; ++c) {
-    const Vertex& v = volume.vertices[tet.v[c]];
-    if (pf.x == v.x && pf.y == v.y && pf.z == v.z) {
-      at.weight[c] = 1;
-      return at;
-    }
+    const Vertex& v = volume.vertices[volume.tets[t].v[c]];
+    if (pf.x == v.x && pf.y == v.y && pf.z == v.z) return c;
+  }
+  return -1;
+}
+
+bool on_a_vertex(const TetVolume& volume, std::uint32_t t, Vec3d p) {
+  return vertex_at(volume, t, p) >= 0;
+}
+
+std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
+  PointLocation at{t, {}};
+  if (const int c = vertex_at(volume, t, p); c >= 0) {
+    at.weight[static_cast<std::size_t>(c)] = 1;
+    return at;
   }
   if (!weights_in(volume, t, p, at.weight)) return std::nullopt;
   for (double w : at.weight) {
@@ -74,6 +83,8 @@ std::optional<PointLocation> locate_by_walking(const TetVolume& volume,
   PointLocation at{from, {}};
   for (int step = 0; step <= kLocateWalkSteps; ++step) {
     if (!weights_in(volume, at.tet, local, at.weight)) return std::nullopt;
+    // A point on a vertex to float precision is in_tet's special case: ask locate_point.
+    if (on_a_vertex(volume, at.tet, local)) return std::nullopt;
     if (strictly_inside(at)) return at;  // in_tet's weights: the same computation
     if (step == kLocateWalkSteps) break;
     // Across the face opposite the vertex of the most negative weight.

@@ -1,8 +1,10 @@
 // The slab test of a ray against an axis-aligned box (Ize 2013), for the two trees a walk
 // searches: the boundary faces' (boundary_faces.hpp) and the volume's BVH when skipping empty
-// space (empty_space.hpp). Both only cull, so the boxes are grown by a few float ulps and a ray
-// that runs exactly along a box side (0 x inf = NaN) keeps the box: a box may be kept that the
-// ray misses, never lost when a face or tet inside it is hit.
+// space (empty_space.hpp). Both only cull, so every box is grown (slab_pad) before the test: a
+// box may be kept that the ray misses, never lost when a face or tet inside it is hit. A ray
+// parallel to an axis with its origin exactly on a grown side gives 0 x inf = NaN there, which
+// keeps the box on the low side and culls it on the high side; either is right, since such a
+// ray runs a whole pad away from what the box holds.
 #pragma once
 
 #include <algorithm>
@@ -32,7 +34,7 @@ inline double slab_pad(double lo, double hi) {
 }
 
 // Where the ray enters the box [lo, hi] (already grown) within [t_lo, t_hi]; NaN when it misses
-// it (every comparison with a miss is false). std::max and std::min ignore a NaN second argument.
+// it (every comparison with a miss is false).
 template <typename Scalar>
 double slab_entry(const SlabRay& ray, const Scalar* lo, const Scalar* hi, double t_lo,
                   double t_hi) {

@@ -3,7 +3,9 @@
 // value at the entry face to its value at the exit face, and a crossing of an isovalue is found
 // in closed form. A crossing counts where the field passes from below the isovalue to at or
 // above it, or back: the field at a face is the same bit for bit from both tets sharing it
-// (face_crossing.hpp), so a surface through a face is met once, in one of the two tets. The
+// (face_crossing.hpp), so a surface the ray passes through at a face is met once, in one of the
+// two tets; where the field only touches the isovalue at a face (a ridge or valley lying in
+// faces), it is met twice at the same depth or not at all, the same on every rank count. The
 // surface is a layer lit by the headlight, flat per tet (the field's gradient in the tet is the
 // isopolygon's normal), its color times its opacity over what lies behind; the volume in front
 // of and behind it is integrated on its own (volume_render.cpp).

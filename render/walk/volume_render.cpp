@@ -151,8 +151,8 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
     row.counts.resize(static_cast<std::size_t>(camera.width));
     for (int i = 0; i < camera.width; ++i) {
       // A ray that starts outside the mesh and has no face to enter through sees nothing.
-      const EntryCandidates candidates = bins.at(i, j);
-      if (options.eye_tet == kBoundaryFace && candidates.tile.empty() &&
+      const EntryCandidates candidates = bins.usable() ? bins.at(i, j) : EntryCandidates{};
+      if (bins.usable() && options.eye_tet == kBoundaryFace && candidates.tile.empty() &&
           candidates.everywhere.empty())
         continue;
       const Vec3d direction = pixel_direction(frame, camera, i, j);
@@ -164,7 +164,7 @@ VolumeFragmentImage render_volume(const TetVolume& volume, const WalkStructure& 
       walk_ray(
           mesh, ray, std::numeric_limits<double>::infinity(),
           [&](const WalkSegment& s) { return gather.add(s); }, counters, options.eye_tet,
-          empty ? &*empty : nullptr, &candidates);
+          empty ? &*empty : nullptr, bins.usable() ? &candidates : nullptr);
       gather.close_run();
       row.counts[static_cast<std::size_t>(i)] =
           static_cast<std::uint32_t>(row.fragments.size() - before);

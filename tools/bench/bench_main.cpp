@@ -73,7 +73,7 @@ SceneFigures measure_scene(int n, const BenchOptions& options) {
   if (n == options.sizes.front()) {
     figures.vtk_volume = measure_vtk_volume(scene, camera, options.threads);
   } else {
-    figures.vtk_volume.skipped = "measured at the first size only";
+    figures.vtk_volume.skipped = kVtkVolumeFirstSizeOnly;
   }
   figures.volume = measure_volume(scene, camera, options.threads);
   figures.shading = measure_shading(scene, camera);

@@ -24,6 +24,9 @@ struct VtkVolumeRun {
   ImageError difference;  // RGB against tetray's image, VTK's read back as 8 bits
 };
 
+// VtkVolumeFigures::skipped at the sizes after the first.
+inline constexpr const char* kVtkVolumeFirstSizeOnly = "measured at the first size only";
+
 struct VtkVolumeFigures {
   std::string skipped;   // why nothing was measured; empty when measured
   double tetray_ms = 0;  // tetray's frame without early termination, as VTK's

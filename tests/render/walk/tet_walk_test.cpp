@@ -237,8 +237,11 @@ TEST(FaceCrossing, ASurfaceLyingInFacesIsMetAlikeByEveryRay) {
     ++rays;
   }
   EXPECT_EQ(rays, 400);
+  // The ridge is met where g rises to 0.5 and again where it falls from it (surface_crossing.hpp:
+  // below to at-or-above, or back), at the same depth: twice on every ray.
   EXPECT_EQ(met.size(), 1u) << "rays met the surface " << *met.begin() << " to " << *met.rbegin()
                             << " times";
+  EXPECT_EQ(*met.begin(), 2);
 }
 
 TEST(TetWalk, EarlyStopEndsTheWalk) {
