@@ -114,6 +114,7 @@ void find_cap_hits(const CapFrame& f, int j, CapRow& row) {
     const std::optional<RegionEntry> entry = entry_through(f.sides, f.eye, d);
     if (!entry) continue;
     const Vec3d point = f.eye + entry->t * d;
+    if (!within_bounds(f.bvh, point)) continue;  // on another rank, or outside the mesh
     std::optional<PointLocation> at;
     if (last) {
       at = f.adjacency != nullptr ? locate_by_walking(f.volume, *f.adjacency, *last, point)

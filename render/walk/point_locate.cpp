@@ -70,6 +70,10 @@ bool strictly_inside(const PointLocation& at) {
 
 }  // namespace
 
+bool within_bounds(const Bvh& bvh, Vec3d local) {
+  return !bvh.empty() && box_contains(bvh.nodes[0].bounds, local);
+}
+
 std::optional<PointLocation> locate_strictly_inside(const TetVolume& volume, std::uint32_t tet,
                                                     Vec3d local) {
   std::optional<PointLocation> at = in_tet(volume, tet, local);

@@ -24,6 +24,10 @@ struct PointLocation {
 // answer does not depend on the BVH's layout. Empty outside every tet.
 std::optional<PointLocation> locate_point(const TetVolume& volume, const Bvh& bvh, Vec3d local);
 
+// Whether the point can lie in a tet of the BVH at all: inside its root box (with the slack of
+// the inside test); locate_point finds nothing elsewhere.
+bool within_bounds(const Bvh& bvh, Vec3d local);
+
 // The point's location in tet `tet` when it lies strictly inside it (farther than the slack
 // above from every face), where no other tet of a valid mesh contains it, so locate_point would
 // give the same answer: a cheap first try for a point near the last one located.
