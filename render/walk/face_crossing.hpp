@@ -34,19 +34,19 @@ struct FaceCrossing {
 };
 
 // `second`: a second field per vertex of the vertex store, or empty. The weights are each
-// corner's own edge determinant, the same from both tets of the face; the sums run over the
-// corners in order of position and interpolate from the first corner, so the crossing is the
-// same to the last bit whichever tet, walk or rank asks, and a field that is constant over the
-// face crosses it at exactly that value (an isosurface lying in a face is met the same way on
-// every rank count).
+// corner's own edge determinant, the same from both tets of the face. The crossing interpolates
+// from the corner first in order of position (the same on every rank, unlike the vertex indices,
+// which each rank's store numbers its own way; by index only where two corners coincide), and
+// the other two enter only through sums whose two terms swap without changing a bit, so the
+// crossing is the same to the last bit whichever tet, walk or rank asks, and a field that is
+// constant over the face crosses it at exactly that value (an isosurface lying in a face is met
+// the same way on every rank count).
 inline FaceCrossing cross_face(const TetVolume& volume, const RayFrame& frame,
                                const ProjectedFace& face, std::span<const float> second = {}) {
   const Point2* p = face.point;
   double w[3] = {std::max(0.0, edge_determinant(p[1], p[2])),
                  std::max(0.0, edge_determinant(p[2], p[0])),
                  std::max(0.0, edge_determinant(p[0], p[1]))};
-  // Corners a < b < c by position (the same on every rank, unlike the vertex indices, which
-  // each rank's store numbers its own way), by index only where two coincide.
   const auto before = [&](int i, int j) {
     const Vertex& vi = volume.vertices[face.vertex[i]];
     const Vertex& vj = volume.vertices[face.vertex[j]];
@@ -55,22 +55,22 @@ inline FaceCrossing cross_face(const TetVolume& volume, const RayFrame& frame,
     if (vi.z != vj.z) return vi.z < vj.z;
     return face.vertex[i] < face.vertex[j];
   };
-  int a = 0, b = 1, c = 2;
-  if (before(b, a)) std::swap(a, b);
-  if (before(c, b)) std::swap(b, c);
-  if (before(b, a)) std::swap(a, b);
-  double sum = w[a] + w[b] + w[c];
+  int a = before(1, 0) ? 1 : 0;
+  if (before(2, a)) a = 2;
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  double sum = w[a] + (w[b] + w[c]);
   if (!(sum > 0)) {  // the face seen edge-on: any point of it is as good
     w[0] = w[1] = w[2] = 1;
     sum = 3;
   }
   const double wb = w[b] / sum, wc = w[c] / sum;
   const auto mix = [&](double va, double vb, double vc) {
-    return va + wb * (vb - va) + wc * (vc - va);
+    return va + (wb * (vb - va) + wc * (vc - va));
   };
   const Vec3d xa = vertex_position(volume, face.vertex[a]);
-  const Vec3d point = xa + wb * (vertex_position(volume, face.vertex[b]) - xa) +
-                      wc * (vertex_position(volume, face.vertex[c]) - xa);
+  const Vec3d xb = vertex_position(volume, face.vertex[b]);
+  const Vec3d xc = vertex_position(volume, face.vertex[c]);
+  const Vec3d point{mix(xa.x, xb.x, xc.x), mix(xa.y, xb.y, xc.y), mix(xa.z, xb.z, xc.z)};
   const auto value = [&](auto of) {
     return mix(of(face.vertex[a]), of(face.vertex[b]), of(face.vertex[c]));
   };
