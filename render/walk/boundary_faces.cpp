@@ -176,36 +176,17 @@ std::optional<FaceEntry> next_entry(const TetVolume& volume, const BoundaryFaces
     return best;
   }
   const SlabRay ray(frame);
-  // Pending nodes with where the ray enters their boxes; a node is skipped when that lies beyond
-  // the best entry found since it was pushed.
-  struct Pending {
-    std::uint32_t node;
-    double t;
-  };
-  Pending stack[64];
-  int top = 0;
-  const auto entry_of = [&](std::uint32_t i) {
-    return slab_entry(ray, boundary.nodes[i].lo, boundary.nodes[i].hi, t_from, t_best);
-  };
-  const double root_t = entry_of(0);
-  if (!(root_t <= t_best)) return best;
-  stack[top++] = {0, root_t};
-  while (top > 0) {
-    const Pending pending = stack[--top];
-    if (!(pending.t <= t_best)) continue;
-    const BoundaryNode& node = boundary.nodes[pending.node];
-    if (node.count == 0) {
-      // The nearer child last, so it is searched first and its hits prune the other.
-      const Pending left{node.first, entry_of(node.first)};
-      const Pending right{node.first + 1, entry_of(node.first + 1)};
-      const bool right_nearer = right.t < left.t;
-      for (const Pending& p : {right_nearer ? left : right, right_nearer ? right : left}) {
-        if (p.t <= t_best) stack[top++] = p;
-      }
-      continue;
-    }
-    for (std::uint32_t f = node.first; f < node.first + node.count; ++f) consider(f);
-  }
+  visit_nearest_first<64>(
+      t_best,
+      [&](std::uint32_t i) {
+        return slab_entry(ray, boundary.nodes[i].lo, boundary.nodes[i].hi, t_from, t_best);
+      },
+      [&](std::uint32_t i) { return boundary.nodes[i].count != 0; },
+      [&](std::uint32_t i) { return boundary.nodes[i].first; },
+      [&](std::uint32_t i) {
+        const BoundaryNode& node = boundary.nodes[i];
+        for (std::uint32_t f = node.first; f < node.first + node.count; ++f) consider(f);
+      });
   return best;
 }
 

@@ -118,38 +118,10 @@ std::optional<FaceEntry> next_busy_entry(const TetVolume& volume, const Bvh& bvh
   if (bvh.empty() || busy.node[0] == 0) return best;
   double t_best = std::numeric_limits<double>::infinity();
   const SlabRay ray(frame);
-  const auto entry_of = [&](std::uint32_t i) {
-    const Bounds4& b = bvh.nodes[i].bounds;
-    return busy.node[i] != 0 ? grown_slab_entry(ray, b.lo, b.hi, t_from, t_best)
-                             : std::numeric_limits<double>::quiet_NaN();
-  };
-  struct Pending {
-    std::uint32_t node;
-    double t;
-  };
-  // One pending node per level, plus the pair just pushed (the builders bound the depth well
-  // below this, as point location assumes).
-  Pending stack[130];
-  int top = 0;
-  const double root_t = entry_of(0);
-  if (!(root_t <= t_best)) return best;
-  stack[top++] = {0, root_t};
-  while (top > 0) {
-    const Pending pending = stack[--top];
-    if (!(pending.t <= t_best)) continue;
-    const BvhNode& node = bvh.nodes[pending.node];
-    if (!node.is_leaf()) {
-      // The nearer child last, so it is searched first and its hits prune the other.
-      const Pending left{node.first, entry_of(node.first)};
-      const Pending right{node.first + 1, entry_of(node.first + 1)};
-      const bool right_nearer = right.t < left.t;
-      for (const Pending& p : {right_nearer ? left : right, right_nearer ? right : left}) {
-        if (p.t <= t_best) stack[top++] = p;
-      }
-      continue;
-    }
-    // The leaf's busy tets whose boxes the ray enters in time, nearest box first: the exact
-    // entry test runs only until a box starts beyond the best entry found.
+  // The leaf's busy tets whose boxes the ray enters in time, nearest box first: the exact entry
+  // test runs only until a box starts beyond the best entry found.
+  const auto leaf = [&](std::uint32_t i) {
+    const BvhNode& node = bvh.nodes[i];
     Candidate candidates[kMaxLeafSize];
     int n = 0;
     for (std::uint32_t t = node.first; t < node.first + node.count; ++t) {
@@ -170,7 +142,18 @@ std::optional<FaceEntry> next_busy_entry(const TetVolume& volume, const Bvh& bvh
       best = entry;
       t_best = entry->crossing.t;
     }
-  }
+  };
+  // One pending node per level, plus the pair just pushed (the builders bound the depth well
+  // below this, as point location assumes).
+  visit_nearest_first<130>(
+      t_best,
+      [&](std::uint32_t i) {
+        const Bounds4& b = bvh.nodes[i].bounds;
+        return busy.node[i] != 0 ? grown_slab_entry(ray, b.lo, b.hi, t_from, t_best)
+                                 : std::numeric_limits<double>::quiet_NaN();
+      },
+      [&](std::uint32_t i) { return bvh.nodes[i].is_leaf(); },
+      [&](std::uint32_t i) { return bvh.nodes[i].first; }, leaf);
   return best;
 }
 

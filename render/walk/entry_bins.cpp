@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "render/scene/screen_bound.hpp"
 #include "render/walk/face_crossing.hpp"
 
 namespace tetray::render {
@@ -29,8 +30,7 @@ struct TileRect {
 enum class Placement { tiles, behind, across };
 
 // The tiles a triangle of points in front of the eye covers: the pixel rectangle of its corners'
-// projections (the inverse of CameraFrame::direction_at, as screen_bound), widened by a
-// thousandth of a pixel for rounding.
+// projections (pixel_position), widened by a thousandth of a pixel for rounding.
 Placement place(const CameraFrame& frame, const Camera& camera, const Vec3d (&corner)[3],
                 TileRect& tiles) {
   int behind = 0;
@@ -41,15 +41,12 @@ Placement place(const CameraFrame& frame, const Camera& camera, const Vec3d (&co
   if (behind == 3) return Placement::behind;
   double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
   for (const Vec3d& point : corner) {
-    const Vec3d d = point - frame.eye;
-    const double depth = dot(d, frame.forward);
-    if (!(depth > 1e-9 * std::max(1.0, length(d)))) return Placement::across;
-    const double px = 0.5 * camera.width * (dot(d, frame.right) / (depth * frame.scale_x) + 1.0);
-    const double py = 0.5 * camera.height * (1.0 - dot(d, frame.up) / (depth * frame.scale_y));
-    x_lo = std::min(x_lo, px);
-    x_hi = std::max(x_hi, px);
-    y_lo = std::min(y_lo, py);
-    y_hi = std::max(y_hi, py);
+    const std::optional<PixelPoint> at = pixel_position(frame, camera, point);
+    if (!at) return Placement::across;
+    x_lo = std::min(x_lo, at->x);
+    x_hi = std::max(x_hi, at->x);
+    y_lo = std::min(y_lo, at->y);
+    y_hi = std::max(y_hi, at->y);
   }
   // Pixel i's ray passes through x = i + 0.5: the pixels whose centres lie in the rectangle.
   constexpr double kMargin = 1e-3;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "render/walk/ray_frame.hpp"
@@ -68,6 +69,41 @@ inline void grow_box(float* lo, float* hi) {
     hi[axis] = static_cast<float>(h);
     if (lo[axis] > l) lo[axis] = std::nextafter(lo[axis], -std::numeric_limits<float>::infinity());
     if (hi[axis] < h) hi[axis] = std::nextafter(hi[axis], std::numeric_limits<float>::infinity());
+  }
+}
+
+// Visits the leaves of a binary tree of boxes (node 0 the root; an inner node's children at
+// first_child(i) and first_child(i) + 1) whose boxes the ray enters no later than `t_best`,
+// nearer child first, so that hits found early prune the rest: `leaf(i)` may lower t_best.
+// entry_of(i): where the ray enters node i's box within [t_from, t_best] (slab_entry; NaN: it
+// misses, or the node is to be skipped). kStack bounds the pending nodes: one per level, plus
+// the pair just pushed.
+template <int kStack, typename EntryOf, typename IsLeaf, typename FirstChild, typename Leaf>
+void visit_nearest_first(const double& t_best, EntryOf&& entry_of, IsLeaf&& is_leaf,
+                         FirstChild&& first_child, Leaf&& leaf) {
+  struct Pending {
+    std::uint32_t node;
+    double t;  // where the ray enters its box; beyond the best hit found since: skipped
+  };
+  Pending stack[kStack];
+  int top = 0;
+  const double root_t = entry_of(0u);
+  if (!(root_t <= t_best)) return;
+  stack[top++] = {0, root_t};
+  while (top > 0) {
+    const Pending pending = stack[--top];
+    if (!(pending.t <= t_best)) continue;
+    if (is_leaf(pending.node)) {
+      leaf(pending.node);
+      continue;
+    }
+    const std::uint32_t first = first_child(pending.node);
+    const Pending left{first, entry_of(first)}, right{first + 1, entry_of(first + 1)};
+    // The nearer child last, so it is searched first.
+    const bool right_nearer = right.t < left.t;
+    for (const Pending& p : {right_nearer ? left : right, right_nearer ? right : left}) {
+      if (p.t <= t_best) stack[top++] = p;
+    }
   }
 }
 
