@@ -1,6 +1,7 @@
 // A volume scene's views on this rank (docs/architecture.md §8): the transfer function of the
 // step, the surfaces' own field when it is not the scene's, then per view a walk through this
-// rank's tets, kept as fragments for the compositor and resolved for a per-rank image.
+// rank's tets, kept as fragments for the compositor and resolved for a per-rank image where one
+// is used.
 #include "adaptor/input/input_views.hpp"
 #include "adaptor/step/step_runner.hpp"
 #include "render/walk/volume_render.hpp"
@@ -35,7 +36,10 @@ void Adaptor::Impl::render_volume_scene(SceneState& s, std::size_t k,
     options.bvh = &volume.bvh();
     s.fragments[v] = render::render_volume(volume.volume(), walks_[s.volume].get(volume.volume()),
                                            camera, options);
-    s.images[v] = render::resolve(s.fragments[v]);
+    // One rank's image is the output. On several, the writer's comes from compositing the
+    // fragments, and the others' images are only written when asked for (of the first view).
+    if (comm_.size == 1 || (config_.output.per_rank_images && v == 0))
+      s.images[v] = render::resolve(s.fragments[v]);
   }
 }
 
