@@ -36,9 +36,9 @@ BasicFragmentImage<F> merge_ranks(const BasicFragmentImage<F>& shape,
   std::vector<F> layers;
   for (std::size_t p = 0; p < pixels; ++p) {
     // Most pixels of an image hold no fragment on any rank: nothing to gather or sort.
-    std::uint32_t total = 0;
-    for (std::size_t r = 0; r < cursor.size(); ++r) total |= counts[r * pixels + p];
-    if (total == 0) {
+    std::uint32_t any = 0;
+    for (std::size_t r = 0; r < cursor.size(); ++r) any |= counts[r * pixels + p];
+    if (any == 0) {
       out.begin.push_back(static_cast<std::uint32_t>(out.fragments.size()));
       continue;
     }

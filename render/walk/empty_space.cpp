@@ -67,7 +67,6 @@ bool mark_nodes(const Bvh& bvh, BusyTets& busy, std::uint32_t i) {
   bool any = false;
   if (node.is_leaf()) {
     for (std::uint32_t t = node.first; t < node.first + node.count && !any; ++t) any = busy.busy(t);
-    if (!any) std::fill_n(busy.tet.begin() + node.first, node.count, BusyTets::kEmptyLeaf);
   } else {
     const bool first = mark_nodes(bvh, busy, node.first);
     const bool second = mark_nodes(bvh, busy, node.first + 1);

@@ -31,8 +31,9 @@ namespace tetray::render {
 struct BusyTets {
   static constexpr std::uint8_t kEmpty = 0;
   static constexpr std::uint8_t kBusy = 1;
-  static constexpr std::uint8_t kEmptyLeaf = 2;    // empty, and so is every tet of its BVH leaf
-  static constexpr std::uint8_t kEmptyRegion = 3;  // ... and of the BVH node above that leaf
+  // Empty, and so is every tet below a BVH node of two leaves or more that holds it: the gap a
+  // ray crosses there is likely long.
+  static constexpr std::uint8_t kEmptyRegion = 2;
 
   std::vector<std::uint8_t> tet;   // per TetVolume::tets
   std::vector<std::uint8_t> node;  // per Bvh::nodes: 1 when any tet below is busy

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 
 #include "render/scene/screen_bound.hpp"
@@ -76,7 +78,6 @@ EntryBins bin_entry_faces(const TetVolume& volume, const BoundaryFaces& boundary
   const Vec3d eye = camera.eye - volume.origin;
   // Each facing face's tiles, then a counting sort into the tiles in face order.
   std::vector<std::pair<std::uint32_t, TileRect>> placed;
-  std::vector<std::uint64_t> counts(tiles + 1, 0);
   std::uint64_t total = 0;
   for (std::uint32_t f = 0; f < boundary.faces.size(); ++f) {
     const BoundaryFace& face = boundary.faces[f];
@@ -92,28 +93,29 @@ EntryBins bin_entry_faces(const TetVolume& volume, const BoundaryFaces& boundary
     }
     if (t.x0 > t.x1) continue;  // between pixel centres or off the image
     placed.push_back({f, t});
-    for (int y = t.y0; y <= t.y1; ++y) {
-      for (int x = t.x0; x <= t.x1; ++x) ++counts[static_cast<std::size_t>(y * bins.tiles_x + x)];
-    }
     total +=
         static_cast<std::uint64_t>(t.x1 - t.x0 + 1) * static_cast<std::uint64_t>(t.y1 - t.y0 + 1);
   }
   // Faces spread over many tiles (slivers across the image, faces near the eye) would make the
-  // lists larger than the tree is worth: the rays then search the tree.
-  if (total > 16 * (static_cast<std::uint64_t>(boundary.faces.size()) + tiles)) {
+  // lists larger than the tree is worth: the rays then search the tree. Below the cap every
+  // count fits the 32-bit offsets.
+  if (total > 16 * (static_cast<std::uint64_t>(boundary.faces.size()) + tiles) ||
+      total > std::numeric_limits<std::uint32_t>::max()) {
     return EntryBins{};
   }
+  const auto for_each_tile = [&](const TileRect& t, auto&& visit) {
+    for (int y = t.y0; y <= t.y1; ++y) {
+      for (int x = t.x0; x <= t.x1; ++x) visit(static_cast<std::size_t>(y * bins.tiles_x + x));
+    }
+  };
   bins.begin.assign(tiles + 1, 0);
-  for (std::size_t k = 0; k < tiles; ++k)
-    bins.begin[k + 1] = bins.begin[k] + static_cast<std::uint32_t>(counts[k]);
+  for (const auto& entry : placed)
+    for_each_tile(entry.second, [&](std::size_t k) { ++bins.begin[k + 1]; });
+  for (std::size_t k = 0; k < tiles; ++k) bins.begin[k + 1] += bins.begin[k];
   bins.faces.resize(bins.begin[tiles]);
   std::vector<std::uint32_t> cursor(bins.begin.begin(), bins.begin.end() - 1);
   for (const auto& [f, t] : placed) {
-    for (int y = t.y0; y <= t.y1; ++y) {
-      for (int x = t.x0; x <= t.x1; ++x) {
-        bins.faces[cursor[static_cast<std::size_t>(y * bins.tiles_x + x)]++] = f;
-      }
-    }
+    for_each_tile(t, [&, face = f](std::size_t k) { bins.faces[cursor[k]++] = face; });
   }
   return bins;
 }

@@ -47,10 +47,6 @@ int vertex_at(const TetVolume& volume, std::uint32_t t, Vec3d p) {
   return -1;
 }
 
-bool on_a_vertex(const TetVolume& volume, std::uint32_t t, Vec3d p) {
-  return vertex_at(volume, t, p) >= 0;
-}
-
 std::optional<PointLocation> in_tet(const TetVolume& volume, std::uint32_t t, Vec3d p) {
   PointLocation at{t, {}};
   if (const int c = vertex_at(volume, t, p); c >= 0) {
@@ -86,9 +82,9 @@ std::optional<PointLocation> locate_by_walking(const TetVolume& volume,
                                                std::uint32_t from, Vec3d local) {
   PointLocation at{from, {}};
   for (int step = 0; step <= kLocateWalkSteps; ++step) {
-    if (!weights_in(volume, at.tet, local, at.weight)) return std::nullopt;
     // A point on a vertex to float precision is in_tet's special case: ask locate_point.
-    if (on_a_vertex(volume, at.tet, local)) return std::nullopt;
+    if (vertex_at(volume, at.tet, local) >= 0) return std::nullopt;
+    if (!weights_in(volume, at.tet, local, at.weight)) return std::nullopt;
     if (strictly_inside(at)) return at;  // in_tet's weights: the same computation
     if (step == kLocateWalkSteps) break;
     // Across the face opposite the vertex of the most negative weight.

@@ -124,11 +124,12 @@ inline FaceCrossing clamp_to_eye(const FaceCrossing& in, const FaceCrossing& out
 // the walk starts before looking for boundary faces; kBoundaryFace: none. Tet20 only (Tet16
 // ignores it: it would need the neighbour behind the eye to decode the next one).
 // `empty` (Tet20 only, t_max infinite): empty tets are crossed without a visit and without the
-// field at their faces; after kEmptyRunBeforeJump of them in a row, or where the walk would leave
-// the domain from one, it jumps to the next busy tet along the ray instead (next_busy_entry),
-// entering it as from a boundary face (visit sees `entered`). A jump needs the empty stretch to
-// be longer than twice the entry slack, so it always moves past every tet visited before.
-// `candidates`: the boundary faces this ray may enter through (entry_bins.hpp); null: all.
+// field at their faces; after a long run of them (kEmptyRunInEmptyRegion, kEmptyRunBeforeJump),
+// or where the walk would leave the domain from one, it jumps to the next busy tet along the ray
+// instead (next_busy_entry), entering it as from a boundary face (visit sees `entered`). A jump
+// needs the empty stretch to be longer than twice the entry slack, so it always moves past every
+// tet visited before. `candidates`: the boundary faces this ray may enter through (entry_bins.hpp);
+// null: all.
 template <typename Layout, typename Visit>
 void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max, Visit&& visit,
               WalkCounters& counters, std::uint32_t eye_tet = kBoundaryFace,
@@ -183,44 +184,35 @@ void walk_ray(const WalkMesh<Layout>& mesh, const RayFrame& frame, double t_max,
       face.vertex[k] = v3;
       face.point[k] = p3;
       if (skip) {
-        // Nothing to gather here: go on, or jump over a long gap to the next busy tet.
+        // Nothing to gather here: jump over a long gap to the next busy tet (where the walk
+        // would leave the domain, or after a long run of empty tets into another), else go on.
         const bool leaving = next == kBoundaryFace;
         ++empty_run;
         const int run_before_jump =
             empty->busy.in_empty_region(tet) ? kEmptyRunInEmptyRegion : kEmptyRunBeforeJump;
-        if (empty_run < run_before_jump && !leaving) {
-          previous = tet;
-          tet = next;
-          in_known = false;
-          continue;
-        }
-        if (!leaving && skips_tet(empty, next, t_max) == false) {
-          previous = tet;
-          tet = next;
-          in_known = false;
-          continue;
-        }
-        const double t_out = std::max(cross_face(mesh.volume, frame, face).t, t_known);
-        // Every tet visited before began at or before t_known: the jump cannot meet one again.
-        if (t_out - t_known > 2 * entry_slack(t_out)) {
-          const std::optional<FaceEntry> jump =
-              next_busy_entry(mesh.volume, empty->bvh, empty->busy, frame,
-                              t_out - entry_slack(t_out), mesh.second_field);
-          if (!jump) return;
-          ++counters.jumps;
-          face = jump->projected;
-          in = jump->crossing;
-          t_known = in.t;
-          in_known = true;
-          tet = jump->tet;
-          previous = kBoundaryFace;
-          entered = true;
-          empty_run = 0;
-          continue;
-        }
-        if (leaving) {
-          t_from = t_out - entry_slack(t_out);
-          break;
+        if (leaving || (empty_run >= run_before_jump && skips_tet(empty, next, t_max))) {
+          const double t_out = std::max(cross_face(mesh.volume, frame, face).t, t_known);
+          // Every tet visited before began at or before t_known: the jump cannot meet one again.
+          if (t_out - t_known > 2 * entry_slack(t_out)) {
+            const std::optional<FaceEntry> jump =
+                next_busy_entry(mesh.volume, empty->bvh, empty->busy, frame,
+                                t_out - entry_slack(t_out), mesh.second_field);
+            if (!jump) return;
+            ++counters.jumps;
+            face = jump->projected;
+            in = jump->crossing;
+            t_known = in.t;
+            in_known = true;
+            tet = jump->tet;
+            previous = kBoundaryFace;
+            entered = true;
+            empty_run = 0;
+            continue;
+          }
+          if (leaving) {
+            t_from = t_out - entry_slack(t_out);
+            break;
+          }
         }
         previous = tet;
         tet = next;

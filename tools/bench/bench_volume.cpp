@@ -9,6 +9,7 @@
 #include "bench_walk.hpp"
 #include "render/core/fragments.hpp"
 #include "tools/bench_common/bench_scene.hpp"
+#include "tools/bench_common/image_error.hpp"
 
 namespace tetray::bench {
 namespace {
@@ -25,20 +26,13 @@ struct Frame {
 Frame volume_frame(const render::TetVolume& volume, const render::WalkStructure& walk,
                    const render::Camera& camera, const render::VolumeRenderOptions& options) {
   Frame frame;
+  render::VolumeFragmentImage fragments;  // the last timed frame's, resolved once
   frame.ms = best_of_ms(kRepetitions, [&] {
-    return time_ms([&] { render::render_volume(volume, walk, camera, options, &frame.stats); });
+    return time_ms(
+        [&] { fragments = render::render_volume(volume, walk, camera, options, &frame.stats); });
   });
-  render::VolumeFragmentImage fragments = render::render_volume(volume, walk, camera, options);
   frame.image = render::resolve(fragments);
   return frame;
-}
-
-double max_difference(const render::Framebuffer& a, const render::Framebuffer& b) {
-  double worst = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    worst = std::max(worst, std::abs(double{a.rgba[i]} - double{b.rgba[i]}));
-  }
-  return worst;
 }
 
 VolumeCase measure_case(const render::TetVolume& volume, const render::Bvh& bvh,
@@ -57,7 +51,7 @@ VolumeCase measure_case(const render::TetVolume& volume, const render::Bvh& bvh,
                     static_cast<double>(std::max<std::size_t>(1, volume.tets.size()));
   c.jumps_per_ray = static_cast<double>(skipping.stats.jumps) /
                     static_cast<double>(std::max<std::uint64_t>(1, skipping.stats.rays));
-  c.max_difference = max_difference(skipping.image, all.image);
+  c.max_difference = image_error(all.image, skipping.image, camera).color_max;
   const auto per_ray = [](const render::VolumeRenderStats& stats) {
     return static_cast<double>(stats.tets_visited) /
            static_cast<double>(std::max<std::uint64_t>(1, stats.rays));
