@@ -1,4 +1,4 @@
-"""The views tools/dolfinx/heat_insitu.py gives tetray, against DOLFINx's own mesh: DOLFINx's
+"""The views examples/dolfinx/heat_insitu.py gives tetray, against DOLFINx's own mesh: DOLFINx's
 arrays themselves (no copies), the field at each geometry node, the ghost cells, and tet ids that
 do not depend on the partition; on any number of ranks."""
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The heat equation on a tet box with DOLFINx 0.5, rendered in situ by tetray.
 
-    PYTHONPATH=build/python mpirun -np 2 /usr/bin/python3 tools/dolfinx/heat_insitu.py \
+    PYTHONPATH=build/python mpirun -np 2 /usr/bin/python3 examples/dolfinx/heat_insitu.py \
         [--config FILE] [--cells N] [--steps N] [--dt DT] [--vtk DIR] [--without ghost|global_ids]
 
 du/dt - div(grad u) = f on [0, 1]^3, u = 0 on the boundary and at t = 0, with a Gaussian source f
