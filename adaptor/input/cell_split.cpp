@@ -1,22 +1,13 @@
 #include "adaptor/input/cell_split.hpp"
 
+#include <algorithm>
 #include <array>
+
+#include "adaptor/input/cell_faces.hpp"
+#include "adaptor/input/hanging_nodes.hpp"
 
 namespace tetray {
 namespace {
-
-// A face of a linear cell: positions in the cell's node list, in cyclic order.
-struct Face {
-  int count;
-  std::array<int, 4> at;
-};
-
-constexpr Face kHexahedronFaces[] = {{4, {0, 1, 2, 3}}, {4, {4, 5, 6, 7}}, {4, {0, 1, 5, 4}},
-                                     {4, {1, 2, 6, 5}}, {4, {2, 3, 7, 6}}, {4, {3, 0, 4, 7}}};
-constexpr Face kWedgeFaces[] = {
-    {3, {0, 1, 2}}, {3, {3, 4, 5}}, {4, {0, 1, 4, 3}}, {4, {1, 2, 5, 4}}, {4, {2, 0, 3, 5}}};
-constexpr Face kPyramidFaces[] = {
-    {4, {0, 1, 2, 3}}, {3, {0, 1, 4}}, {3, {1, 2, 4}}, {3, {2, 3, 4}}, {3, {3, 0, 4}}};
 
 // The 10-node tet (VTK order: corners, then the midpoints of edges 01, 12, 02, 03, 13, 23) as
 // its four corner tets and the inner octahedron cut along the diagonal from node 4 to node 9.
@@ -74,31 +65,32 @@ bool known_type(std::uint8_t type) {
 
 class Splitter {
  public:
-  Splitter(std::span<const std::uint64_t> keys, SplitCells& out) : keys_(keys), out_(out) {}
+  Splitter(std::span<const std::uint64_t> keys, const HangingNodes& hanging, SplitCells& out)
+      : keys_(keys), hanging_(hanging), out_(out) {}
 
   void split(CellType type, std::span<const std::int64_t> nodes, std::uint64_t cell) {
     cell_ = cell;
     switch (type) {
-      case CellType::tetra:
-        emit(nodes[0], nodes[1], nodes[2], nodes[3]);
-        return;
-      case CellType::hexahedron:
-        return cone(nodes, kHexahedronFaces);
-      case CellType::wedge:
-        return cone(nodes, kWedgeFaces);
-      case CellType::pyramid:
-        return cone(nodes, kPyramidFaces);
       case CellType::quadratic_tetra:
         return quadratic_tetra(nodes);
       case CellType::lagrange_tetrahedron:
-        return nodes.size() == 4 ? split(CellType::tetra, nodes, cell) : quadratic_tetra(nodes);
+        if (nodes.size() == 10) return quadratic_tetra(nodes);
+        break;
       case CellType::lagrange_hexahedron:
-        return nodes.size() == 8 ? cone(nodes, kHexahedronFaces) : quadratic_hexahedron(nodes);
+        if (nodes.size() == 27) return quadratic_hexahedron(nodes);
+        break;
+      default:
+        break;
     }
+    linear_cell(nodes, linear_cell_faces(type, nodes.size()));
   }
 
  private:
+  // The order of the points: a hanging face centre before all others (so the finer cells cut
+  // their faces through it, as the coarse cell's bisection does), then by key, then by index.
   bool smaller(std::int64_t a, std::int64_t b) const {
+    const bool centre_a = hanging_.is_centre(a), centre_b = hanging_.is_centre(b);
+    if (centre_a != centre_b) return centre_a;
     return keys_[a] < keys_[b] || (keys_[a] == keys_[b] && a < b);
   }
 
@@ -107,44 +99,97 @@ class Splitter {
     out_.tet_cell.push_back(cell_);
   }
 
+  void linear_cell(std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+    if (faces.size() == 4) {  // a tet
+      cell_tets_.assign(1, {nodes[0], nodes[1], nodes[2], nodes[3]});
+    } else {
+      cone(nodes, faces);
+    }
+    if (!hanging_.empty()) bisect_at_hanging_nodes(nodes, faces);
+    for (const auto& t : cell_tets_) emit(t[0], t[1], t[2], t[3]);
+  }
+
+  // The quadrilateral face's corners from its smallest, cyclic: the face is cut from corner 0 to
+  // corner 2.
+  std::array<std::int64_t, 4> from_smallest(std::span<const std::int64_t> nodes,
+                                            const CellFace& face) const {
+    int s = 0;
+    for (int k = 1; k < 4; ++k) {
+      if (smaller(nodes[face.at[k]], nodes[face.at[s]])) s = k;
+    }
+    std::array<std::int64_t, 4> f{};
+    for (int k = 0; k < 4; ++k) f[k] = nodes[face.at[(s + k) % 4]];
+    return f;
+  }
+
   // Tets from the cell's smallest node to the triangles of every face that does not hold it; a
   // quadrilateral face is cut by the diagonal through its own smallest node. The faces that hold
   // the smallest node come out cut through it: the same rule.
-  template <std::size_t N>
-  void cone(std::span<const std::int64_t> nodes, const Face (&faces)[N]) {
+  void cone(std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+    cell_tets_.clear();
     std::int64_t apex = nodes[0];
-    for (std::int64_t node : nodes.first(corner_count(faces))) {
-      if (smaller(node, apex)) apex = node;
-    }
-    for (const Face& face : faces) {
-      std::array<std::int64_t, 4> f{};
-      bool holds_apex = false;
+    for (const CellFace& face : faces) {
       for (int k = 0; k < face.count; ++k) {
-        f[k] = nodes[face.at[k]];
-        holds_apex = holds_apex || f[k] == apex;
+        if (smaller(nodes[face.at[k]], apex)) apex = nodes[face.at[k]];
       }
-      if (holds_apex) continue;
+    }
+    for (const CellFace& face : faces) {
+      const auto holds_apex = [&] {
+        for (int k = 0; k < face.count; ++k) {
+          if (nodes[face.at[k]] == apex) return true;
+        }
+        return false;
+      };
+      if (holds_apex()) continue;
       if (face.count == 3) {
-        emit(apex, f[0], f[1], f[2]);
+        cell_tets_.push_back({apex, nodes[face.at[0]], nodes[face.at[1]], nodes[face.at[2]]});
         continue;
       }
-      int s = 0;
-      for (int k = 1; k < 4; ++k) {
-        if (smaller(f[k], f[s])) s = k;
-      }
-      const auto at = [&](int k) { return f[(s + k) % 4]; };
-      emit(apex, at(0), at(1), at(2));
-      emit(apex, at(0), at(2), at(3));
+      const std::array<std::int64_t, 4> f = from_smallest(nodes, face);
+      cell_tets_.push_back({apex, f[0], f[1], f[2]});
+      cell_tets_.push_back({apex, f[0], f[2], f[3]});
     }
   }
 
-  template <std::size_t N>
-  static std::size_t corner_count(const Face (&faces)[N]) {
-    int highest = 0;
-    for (const Face& face : faces) {
-      for (int k = 0; k < face.count; ++k) highest = std::max(highest, face.at[k]);
+  // Bisects the cell's tets at the hanging nodes on its boundary (hanging_nodes.hpp): first at
+  // each face centre, along the face's diagonal (the face then comes out as four triangles round
+  // the centre), then at each edge midpoint, in the points' order, so that two cells sharing a face
+  // cut it into the same triangles as each other and as the finer cells beyond it.
+  void bisect_at_hanging_nodes(std::span<const std::int64_t> nodes,
+                               std::span<const CellFace> faces) {
+    for (const CellFace& face : faces) {
+      if (face.count != 4) continue;
+      const std::array<std::int64_t, 4> f = from_smallest(nodes, face);
+      const std::int64_t centre = hanging_.centre(f[0], f[1], f[2], f[3]);
+      if (centre >= 0) bisect(f[0], f[2], centre);
     }
-    return static_cast<std::size_t>(highest + 1);
+    midpoints_.clear();
+    for (const CellFace& face : faces) {
+      for (int k = 0; k < face.count; ++k) {
+        const std::int64_t a = nodes[face.at[k]], b = nodes[face.at[(k + 1) % face.count]];
+        const std::int64_t mid = hanging_.midpoint(a, b);
+        if (mid >= 0) midpoints_.push_back({mid, std::min(a, b), std::max(a, b)});
+      }
+    }
+    std::sort(midpoints_.begin(), midpoints_.end(),
+              [&](const auto& x, const auto& y) { return smaller(x[0], y[0]); });
+    midpoints_.erase(std::unique(midpoints_.begin(), midpoints_.end()), midpoints_.end());
+    for (const auto& [mid, a, b] : midpoints_) bisect(a, b, mid);
+  }
+
+  // Replaces every tet of the cell that has the edge (a, b) by its two halves at `mid`.
+  void bisect(std::int64_t a, std::int64_t b, std::int64_t mid) {
+    const std::size_t count = cell_tets_.size();
+    for (std::size_t t = 0; t < count; ++t) {
+      std::array<std::int64_t, 4>& tet = cell_tets_[t];
+      const auto at_a = std::find(tet.begin(), tet.end(), a);
+      const auto at_b = std::find(tet.begin(), tet.end(), b);
+      if (at_a == tet.end() || at_b == tet.end()) continue;
+      std::array<std::int64_t, 4> half = tet;
+      half[static_cast<std::size_t>(at_b - tet.begin())] = mid;
+      *at_a = mid;
+      cell_tets_.push_back(half);
+    }
   }
 
   void quadratic_tetra(std::span<const std::int64_t> nodes) {
@@ -164,12 +209,16 @@ class Splitter {
               node(0, 0, 0), node(1, 0, 0), node(1, 1, 0), node(0, 1, 0),
               node(0, 0, 1), node(1, 0, 1), node(1, 1, 1), node(0, 1, 1)};
           cone(hexahedron, kHexahedronFaces);
+          for (const auto& t : cell_tets_) emit(t[0], t[1], t[2], t[3]);
         }
   }
 
   std::span<const std::uint64_t> keys_;
+  const HangingNodes& hanging_;
   SplitCells& out_;
   std::uint64_t cell_ = 0;
+  std::vector<std::array<std::int64_t, 4>> cell_tets_;  // the tets of the cell being split
+  std::vector<std::array<std::int64_t, 3>> midpoints_;  // (midpoint, a, b) of its edges
 };
 
 std::string cell_text(std::size_t cell, std::uint8_t type) {
@@ -232,11 +281,16 @@ std::string offsets_problem(std::span<const std::int64_t> offsets, std::size_t c
 
 SplitCells split_cells(std::span<const std::uint8_t> types, std::span<const std::int64_t> offsets,
                        std::span<const std::int64_t> connectivity,
-                       std::span<const std::uint64_t> point_keys) {
+                       std::span<const std::uint64_t> point_keys, std::span<const double> xyz) {
   SplitCells out;
   out.error = offsets_problem(offsets, types.size(), connectivity.size());
   if (!out.error.empty()) return out;
-  Splitter splitter(point_keys, out);
+  const HangingNodes hanging = xyz.size() == 3 * point_keys.size()
+                                   ? HangingNodes::find(types, offsets, connectivity, xyz)
+                                   : HangingNodes();
+  out.hanging_midpoints = hanging.midpoint_count();
+  out.hanging_centres = hanging.centre_count();
+  Splitter splitter(point_keys, hanging, out);
   for (std::size_t c = 0; c < types.size(); ++c) {
     const auto nodes = connectivity.subspan(static_cast<std::size_t>(offsets[c]),
                                             static_cast<std::size_t>(offsets[c + 1] - offsets[c]));

@@ -39,11 +39,16 @@ std::string widen(const CellsView& c, std::vector<std::int64_t>& offsets,
   return {};
 }
 
-// The order every rank gives the points of a shared face: their reference positions' hash.
+// The points' reference positions, in double.
 template <typename Scalar>
-std::vector<std::uint64_t> position_keys(const PointsView& points) {
+std::vector<double> positions(const PointsView& points) {
   const auto* xyz = static_cast<const Scalar*>(points.xyz);
-  std::vector<std::uint64_t> keys(points.count);
+  return std::vector<double>(xyz, xyz + 3 * points.count);
+}
+
+// The order every rank gives the points of a shared face: their reference positions' hash.
+std::vector<std::uint64_t> position_keys(std::span<const double> xyz) {
+  std::vector<std::uint64_t> keys(xyz.size() / 3);
   for (std::size_t p = 0; p < keys.size(); ++p) {
     keys[p] = render::position_hash(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
   }
@@ -75,10 +80,11 @@ std::string CellTets::split(const MeshView& mesh) {
   std::string error = c.type == IndexType::int64 ? widen<std::int64_t>(c, offsets, connectivity)
                                                  : widen<std::int32_t>(c, offsets, connectivity);
   if (!error.empty()) return error;
-  const std::vector<std::uint64_t> keys = mesh.points.type == ScalarType::float64
-                                              ? position_keys<double>(mesh.points)
-                                              : position_keys<float>(mesh.points);
-  SplitCells split = split_cells(std::span(c.types, c.count), offsets, connectivity, keys);
+  const std::vector<double> xyz = mesh.points.type == ScalarType::float64
+                                      ? positions<double>(mesh.points)
+                                      : positions<float>(mesh.points);
+  const std::vector<std::uint64_t> keys = position_keys(xyz);
+  SplitCells split = split_cells(std::span(c.types, c.count), offsets, connectivity, keys, xyz);
   if (!split.error.empty()) return "mesh.cells: " + split.error;
   tets_ = std::move(split.tets);
   if (c.ghost != nullptr) {

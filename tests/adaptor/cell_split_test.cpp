@@ -56,7 +56,7 @@ bool on_boundary(const CellMesh& m, const std::array<std::int64_t, 3>& face) {
 // Splits `m` under `keys` and checks the tets fill it without gaps, overlaps or cracks.
 void expect_conforming_split(const CellMesh& m, const std::vector<std::uint64_t>& keys,
                              const char* label) {
-  const SplitCells split = split_cells(m.types, m.offsets, m.connectivity, keys);
+  const SplitCells split = split_cells(m.types, m.offsets, m.connectivity, keys, m.xyz(0, m.n));
   ASSERT_EQ(split.error, "") << label;
   ASSERT_EQ(split.tet_cell.size() * 4, split.tets.size()) << label;
   double total = 0;
@@ -92,12 +92,89 @@ TEST(CellSplit, FillsTheMeshAndConformsUnderAnyPointOrder) {
   }
 }
 
+// Where coarse cubes meet refined ones, the coarse cells' tets are bisected at the hanging nodes:
+// every triangle inside the mesh is still a face of exactly two tets (a coarse face against four
+// fine ones would leave eight triangles and two of another shape each a face of one tet), under
+// any order of the points.
+TEST(CellSplit, ConformsWhereCoarseCellsMeetRefinedOnesUnderAnyPointOrder) {
+  for (const testing::CellKind& kind : testing::kHangingKinds) {
+    const CellMesh m = lattice(4, kind.make);
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      expect_conforming_split(m, shuffled_keys(m.points.size(), seed), kind.name);
+    }
+  }
+}
+
+// On [0, 4]^3 refined where x >= 2, the interface x = 2 holds 4 x 4 coarse faces: 16 hanging
+// centres, and 2 x 5 x 4 = 40 coarse edges, each with a hanging midpoint. Nothing hangs in a mesh
+// refined everywhere, or in one of tets (whose faces' edges have no third point at their middle).
+TEST(CellSplit, FindsEachHangingNodeAndNoOther) {
+  const CellMesh half = lattice(4, testing::hexahedra_refined_in_half);
+  SplitCells split = split_cells(half.types, half.offsets, half.connectivity,
+                                 shuffled_keys(half.points.size(), 3), half.xyz());
+  EXPECT_EQ(split.hanging_centres, 16u);
+  EXPECT_EQ(split.hanging_midpoints, 40u);
+  for (const testing::CellKind& kind : kCellKinds) {
+    const CellMesh m = lattice(3, kind.make);
+    split = split_cells(m.types, m.offsets, m.connectivity, shuffled_keys(m.points.size(), 3),
+                        m.xyz());
+    EXPECT_EQ(split.hanging_midpoints + split.hanging_centres, 0u) << kind.name;
+  }
+}
+
+// Each rank numbers its points its own way: the tets of every cell, as sets of points, are the
+// same under any numbering (keys follow their points). The order of a cell's bisections must
+// follow the keys, not the indices, or two ranks cut a face with two hanging edges apart.
+TEST(CellSplit, HangingNodesSplitAlikeUnderAnyNumberingOfThePoints) {
+  for (const testing::CellKind& kind : testing::kHangingKinds) {
+    const CellMesh m = lattice(4, kind.make);
+    const std::vector<std::uint64_t> keys = shuffled_keys(m.points.size(), 11);
+    const std::vector<double> xyz = m.xyz();
+    // The tets of each cell as sorted point quadruples, in the original numbering.
+    const auto tets_by_cell = [&](const SplitCells& split, const std::vector<std::int64_t>& original) {
+      std::vector<std::vector<std::array<std::int64_t, 4>>> cells(m.types.size());
+      for (std::size_t t = 0; t < split.tet_cell.size(); ++t) {
+        std::array<std::int64_t, 4> tet{};
+        for (int k = 0; k < 4; ++k) tet[k] = original[split.tets[4 * t + k]];
+        std::sort(tet.begin(), tet.end());
+        cells[split.tet_cell[t]].push_back(tet);
+      }
+      for (auto& c : cells) std::sort(c.begin(), c.end());
+      return cells;
+    };
+    std::vector<std::int64_t> identity(m.points.size());
+    std::iota(identity.begin(), identity.end(), 0);
+    const auto reference =
+        tets_by_cell(split_cells(m.types, m.offsets, m.connectivity, keys, xyz), identity);
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      std::vector<std::int64_t> original = identity;  // original[new index] = old index
+      std::shuffle(original.begin(), original.end(), std::mt19937(seed));
+      std::vector<std::int64_t> renumbered(m.points.size());
+      std::vector<std::uint64_t> new_keys(m.points.size());
+      std::vector<double> new_xyz(xyz.size());
+      for (std::size_t p = 0; p < original.size(); ++p) {
+        const auto old = static_cast<std::size_t>(original[p]);
+        renumbered[old] = static_cast<std::int64_t>(p);
+        new_keys[p] = keys[old];
+        std::copy_n(&xyz[3 * old], 3, &new_xyz[3 * p]);
+      }
+      std::vector<std::int64_t> connectivity(m.connectivity.size());
+      for (std::size_t k = 0; k < connectivity.size(); ++k) {
+        connectivity[k] = renumbered[static_cast<std::size_t>(m.connectivity[k])];
+      }
+      const SplitCells split = split_cells(m.types, m.offsets, connectivity, new_keys, new_xyz);
+      EXPECT_EQ(tets_by_cell(split, original), reference) << kind.name << ", seed " << seed;
+    }
+  }
+}
+
 // A rank holding some of the cells splits each as the whole mesh does.
 TEST(CellSplit, ASubsetOfTheCellsSplitsAsInTheWholeMesh) {
   for (const testing::CellKind& kind : kCellKinds) {
     const CellMesh m = lattice(3, kind.make);
     const std::vector<std::uint64_t> keys = shuffled_keys(m.points.size(), 5);
-    const SplitCells whole = split_cells(m.types, m.offsets, m.connectivity, keys);
+    const std::vector<double> xyz = m.xyz();
+    const SplitCells whole = split_cells(m.types, m.offsets, m.connectivity, keys, xyz);
     const std::size_t first = m.types.size() / 3, last = 2 * m.types.size() / 3;
     std::vector<std::int64_t> offsets;
     for (std::size_t c = first; c <= last; ++c) offsets.push_back(m.offsets[c] - m.offsets[first]);
@@ -106,7 +183,7 @@ TEST(CellSplit, ASubsetOfTheCellsSplitsAsInTheWholeMesh) {
                     std::span(m.connectivity)
                         .subspan(static_cast<std::size_t>(m.offsets[first]),
                                  static_cast<std::size_t>(m.offsets[last] - m.offsets[first])),
-                    keys);
+                    keys, xyz);
     ASSERT_EQ(part.error, "");
     const auto begin = std::find(whole.tet_cell.begin(), whole.tet_cell.end(), first);
     const std::size_t offset = static_cast<std::size_t>(begin - whole.tet_cell.begin());
@@ -131,15 +208,15 @@ TEST(CellSplit, WhatItCannotSplitIsAnErrorNamingTheCell) {
   for (const Case& c : cases) {
     const std::vector<std::uint8_t> types = {10, c.type};
     const std::vector<std::int64_t> offsets = {0, 4, static_cast<std::int64_t>(4 + c.nodes)};
-    const SplitCells split = split_cells(types, offsets, std::span(nodes).first(4 + c.nodes), keys);
+    const SplitCells split = split_cells(types, offsets, std::span(nodes).first(4 + c.nodes), keys, {});
     EXPECT_NE(split.error.find(c.message), std::string::npos) << split.error;
   }
   const std::vector<std::uint8_t> tet = {10};
   const std::vector<std::int64_t> out_of_range = {0, 1, 2, 30}, offsets = {0, 4};
-  EXPECT_NE(split_cells(tet, offsets, out_of_range, keys).error.find("names point 30 outside"),
+  EXPECT_NE(split_cells(tet, offsets, out_of_range, keys, {}).error.find("names point 30 outside"),
             std::string::npos);
   const std::vector<std::int64_t> short_offsets = {0, 9};
-  EXPECT_NE(split_cells(tet, short_offsets, out_of_range, keys).error.find("run outside"),
+  EXPECT_NE(split_cells(tet, short_offsets, out_of_range, keys, {}).error.find("run outside"),
             std::string::npos);
 }
 

@@ -4,6 +4,7 @@
 // §5: zero pinholes with every packet size) and tetray's image agrees with the double-precision
 // reference intersector on the standard cameras. The split's points are ordered by their positions'
 // hash, as the adaptor orders them.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -27,7 +28,7 @@ struct SplitMesh {
   std::vector<std::int64_t> tets;
 };
 
-SplitMesh split_mesh(const testing::CellKind& kind) {
+SplitMesh split_mesh(const testing::CellKind& kind, bool use_hanging_nodes = true) {
   const testing::CellMesh cells = testing::lattice(kCubes, kind.make);
   SplitMesh mesh;
   mesh.points = cells.xyz(-1, 1);
@@ -36,10 +37,12 @@ SplitMesh split_mesh(const testing::CellKind& kind) {
     const double* x = &mesh.points[3 * p];
     keys[p] = render::position_hash(x[0], x[1], x[2]);
   }
-  SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys);
+  SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys,
+                                 use_hanging_nodes ? mesh.points : std::vector<double>());
   EXPECT_EQ(split.error, "") << kind.name;
   mesh.tets = std::move(split.tets);
   mesh.field = sample_field(mesh.points, [](Vec3d x) { return length(x - kCenter); });
+  testing::constrain_hanging_values(cells, mesh.field);
   return mesh;
 }
 
@@ -63,6 +66,37 @@ TEST(SplitCells, ImagesAgreeWithTheReference) {
     }
     EXPECT_GT(total.reference_hits, total.pixels / 10) << kind.name;
     EXPECT_EQ(total.failures(), 0u) << kind.name << ": " << total.summary();
+  }
+}
+
+// A solver's adaptively refined mesh (coarse hexahedra against refined ones, the field at the
+// hanging nodes constrained as the solver gives it): the isosurface has no pinhole along the
+// refinement interfaces. The same split without the hanging nodes leaves cracks there, which the
+// same check finds: it can fail.
+TEST(SplitCells, LevelSetIsWatertightAcrossRefinementInterfaces) {
+  for (const testing::CellKind& kind : testing::kHangingKinds) {
+    const SplitMesh mesh = split_mesh(kind);
+    const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
+    expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
+  }
+}
+
+TEST(SplitCells, IgnoringTheHangingNodesCracksTheSurface) {
+  for (const testing::CellKind& kind : testing::kHangingKinds) {
+    const SplitMesh mesh = split_mesh(kind, false);
+    const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
+    ::testing::TestPartResultArray failures;
+    {
+      const ::testing::ScopedFakeTestPartResultReporter capture(
+          ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
+      expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
+    }
+    int pinholes = 0;
+    for (int k = 0; k < failures.size(); ++k) {
+      pinholes += std::string(failures.GetTestPartResult(k).message()).find("pinhole") !=
+                  std::string::npos;
+    }
+    EXPECT_GT(pinholes, 0) << kind.name;
   }
 }
 

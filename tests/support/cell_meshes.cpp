@@ -4,6 +4,9 @@
 #include <vtkLagrangeHexahedron.h>
 #include <vtkNew.h>
 
+#include <cmath>
+#include <stdexcept>
+
 namespace tetray::testing {
 namespace {
 
@@ -28,6 +31,12 @@ std::int64_t CellMesh::point(LatticePoint p) {
   if (found != index_.end()) return found->second;
   points.push_back(p);
   return index_[p] = static_cast<std::int64_t>(points.size() - 1);
+}
+
+std::int64_t CellMesh::index_of(LatticePoint p) const {
+  const auto found = index_.find(p);
+  if (found == index_.end()) throw std::out_of_range("no lattice point there");
+  return found->second;
 }
 
 void CellMesh::add(std::uint8_t vtk_type, const std::vector<std::int64_t>& nodes) {
@@ -95,6 +104,80 @@ void quadratic_hexahedra(CellMesh& m, LatticePoint o) {
             m.point({o[0] + 0.5 * i, o[1] + 0.5 * j, o[2] + 0.5 * k});
       }
   m.add(VTK_LAGRANGE_HEXAHEDRON, nodes);
+}
+
+namespace {
+
+// Eight hexahedra of half the side, VTK's corner order in each.
+void refined_cube(CellMesh& m, LatticePoint o) {
+  const int dx[8] = {0, 1, 1, 0, 0, 1, 1, 0}, dy[8] = {0, 0, 1, 1, 0, 0, 1, 1},
+            dz[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+  for (int child = 0; child < 8; ++child) {
+    const LatticePoint half = {o[0] + 0.5 * (child & 1), o[1] + 0.5 * ((child >> 1) & 1),
+                               o[2] + 0.5 * (child >> 2)};
+    std::vector<std::int64_t> nodes;
+    for (int k = 0; k < 8; ++k) {
+      nodes.push_back(m.point({half[0] + 0.5 * dx[k], half[1] + 0.5 * dy[k], half[2] + 0.5 * dz[k]}));
+    }
+    m.add(VTK_HEXAHEDRON, nodes);
+  }
+}
+
+bool is_coarse_cube(const CellMesh& m, LatticePoint o) {
+  for (double x : o) {
+    if (x < 0 || x >= m.n) return false;
+  }
+  return m.coarse_cubes.count(o) != 0;
+}
+
+}  // namespace
+
+void hexahedra_refined_in_half(CellMesh& m, LatticePoint o) {
+  if (o[0] >= m.n / 2) return refined_cube(m, o);
+  hexahedra(m, o);
+  m.coarse_cubes.insert(o);
+}
+
+void hexahedra_refined_alternately(CellMesh& m, LatticePoint o) {
+  if (static_cast<int>(o[0] + o[1] + o[2]) % 2 == 0) return refined_cube(m, o);
+  hexahedra(m, o);
+  m.coarse_cubes.insert(o);
+}
+
+void hexahedra_refined_in_an_l(CellMesh& m, LatticePoint o) {
+  if (o[0] >= m.n / 2 || o[1] >= m.n / 2) return refined_cube(m, o);
+  hexahedra(m, o);
+  m.coarse_cubes.insert(o);
+}
+
+void constrain_hanging_values(const CellMesh& m, std::vector<double>& values) {
+  for (std::size_t p = 0; p < m.points.size(); ++p) {
+    const LatticePoint& x = m.points[p];
+    std::vector<int> halves;
+    for (int k = 0; k < 3; ++k) {
+      if (x[k] != std::floor(x[k])) halves.push_back(k);
+    }
+    if (halves.empty() || halves.size() == 3) continue;
+    // The coarse cubes that may hold x on their boundary: each integer coordinate on either side.
+    bool hanging = false;
+    for (int corner = 0; corner < 8 && !hanging; ++corner) {
+      LatticePoint o{};
+      for (int k = 0; k < 3; ++k) {
+        o[k] = std::floor(x[k]) - ((x[k] == std::floor(x[k]) && (corner >> k & 1)) ? 1 : 0);
+      }
+      hanging = is_coarse_cube(m, o);
+    }
+    if (!hanging) continue;
+    double sum = 0;
+    int count = 0;
+    for (int s = 0; s < (1 << halves.size()); ++s) {
+      LatticePoint q = x;
+      for (std::size_t h = 0; h < halves.size(); ++h) q[halves[h]] += (s >> h & 1) ? 0.5 : -0.5;
+      sum += values[m.index_of(q)];
+      ++count;
+    }
+    values[p] = sum / count;
+  }
 }
 
 CellMesh lattice(int n, CellMaker make) {

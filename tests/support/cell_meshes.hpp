@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <vector>
 
 namespace tetray::testing {
@@ -19,8 +20,12 @@ struct CellMesh {
   std::vector<std::int64_t> connectivity;
   int n = 0;
 
+  std::set<LatticePoint> coarse_cubes;  // cubes left whole by a refining maker (their corner)
+
   // The index of the point at p, added when new.
   std::int64_t point(LatticePoint p);
+  // The index of the point at p, which must exist.
+  std::int64_t index_of(LatticePoint p) const;
   void add(std::uint8_t vtk_type, const std::vector<std::int64_t>& nodes);
   // The coordinates as xyz interleaved, mapped from [0, n]^3 onto [lo, hi]^3.
   std::vector<double> xyz(double lo = 0, double hi = 1) const;
@@ -54,5 +59,22 @@ inline constexpr CellKind kCellKinds[] = {{"hexahedra", hexahedra},
 
 // The n^3 cubes of [0, n]^3, each filled by `make`.
 CellMesh lattice(int n, CellMaker make);
+
+// Meshes with hanging nodes, as adaptive refinement makes them: some cubes are one hexahedron,
+// the others eight half-size hexahedra, whose corners hang at the middle of the coarse cubes'
+// edges and faces where the two meet.
+void hexahedra_refined_in_half(CellMesh& m, LatticePoint corner);  // cubes with x >= n / 2
+void hexahedra_refined_alternately(CellMesh& m, LatticePoint corner);  // cubes with even i+j+k
+// Cubes with x >= n / 2 or y >= n / 2: coarse faces with two edges on refinement interfaces.
+void hexahedra_refined_in_an_l(CellMesh& m, LatticePoint corner);
+inline constexpr CellKind kHangingKinds[] = {
+    {"hexahedra refined in half the box", hexahedra_refined_in_half},
+    {"hexahedra refined in alternate cubes", hexahedra_refined_alternately},
+    {"hexahedra refined in an L", hexahedra_refined_in_an_l}};
+
+// The field a solver gives at hanging nodes (the hanging-node constraint of a trilinear field):
+// at a point hanging on an edge of a coarse cube, the mean of the edge's two ends; on a face, the
+// mean of its four corners. `values` holds a value per point; those at hanging points are replaced.
+void constrain_hanging_values(const CellMesh& m, std::vector<double>& values);
 
 }  // namespace tetray::testing

@@ -1,0 +1,50 @@
+// The faces of the linear cells tetray splits, as positions in the cell's node list (VTK's node
+// order), each face's nodes in cyclic order: the split cones a cell into these faces' triangles,
+// and the hanging nodes are found along their edges.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "adaptor/input/cell_split.hpp"
+
+namespace tetray {
+
+struct CellFace {
+  int count;  // 3 or 4 nodes
+  std::array<int, 4> at;
+};
+
+inline constexpr CellFace kTetraFaces[] = {
+    {3, {0, 1, 2}}, {3, {0, 1, 3}}, {3, {1, 2, 3}}, {3, {2, 0, 3}}};
+inline constexpr CellFace kHexahedronFaces[] = {{4, {0, 1, 2, 3}}, {4, {4, 5, 6, 7}},
+                                                {4, {0, 1, 5, 4}}, {4, {1, 2, 6, 5}},
+                                                {4, {2, 3, 7, 6}}, {4, {3, 0, 4, 7}}};
+inline constexpr CellFace kWedgeFaces[] = {
+    {3, {0, 1, 2}}, {3, {3, 4, 5}}, {4, {0, 1, 4, 3}}, {4, {1, 2, 5, 4}}, {4, {2, 0, 3, 5}}};
+inline constexpr CellFace kPyramidFaces[] = {
+    {4, {0, 1, 2, 3}}, {3, {0, 1, 4}}, {3, {1, 2, 4}}, {3, {2, 3, 4}}, {3, {3, 0, 4}}};
+
+// The faces of a linear cell of this type and node count; none for a quadratic cell.
+inline std::span<const CellFace> linear_cell_faces(CellType type, std::size_t nodes) {
+  switch (type) {
+    case CellType::tetra:
+      return kTetraFaces;
+    case CellType::hexahedron:
+      return kHexahedronFaces;
+    case CellType::wedge:
+      return kWedgeFaces;
+    case CellType::pyramid:
+      return kPyramidFaces;
+    case CellType::lagrange_tetrahedron:
+      return nodes == 4 ? std::span<const CellFace>(kTetraFaces) : std::span<const CellFace>();
+    case CellType::lagrange_hexahedron:
+      return nodes == 8 ? std::span<const CellFace>(kHexahedronFaces)
+                        : std::span<const CellFace>();
+    case CellType::quadratic_tetra:
+      return {};
+  }
+  return {};
+}
+
+}  // namespace tetray

@@ -1,0 +1,209 @@
+#include "adaptor/input/hanging_nodes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "adaptor/input/cell_faces.hpp"
+
+namespace tetray {
+namespace {
+
+// How far (relative to the edge or the face) a hanging node may lie from the exact middle: far
+// above float coordinates' rounding, far below any two distinct nodes of a mesh.
+constexpr double kPlaceTolerance = 1e-4;
+
+// Calls visit(nodes, faces) for every linear cell whose nodes name points of the mesh (the split
+// reports the others).
+template <typename Visit>
+void for_each_linear_cell(std::span<const std::uint8_t> types,
+                          std::span<const std::int64_t> offsets,
+                          std::span<const std::int64_t> connectivity, std::size_t points,
+                          Visit visit) {
+  if (offsets.size() != types.size() + 1) return;
+  for (std::size_t c = 0; c < types.size(); ++c) {
+    if (offsets[c] < 0 || offsets[c + 1] < offsets[c] ||
+        static_cast<std::size_t>(offsets[c + 1]) > connectivity.size()) {
+      continue;
+    }
+    const auto nodes = connectivity.subspan(static_cast<std::size_t>(offsets[c]),
+                                            static_cast<std::size_t>(offsets[c + 1] - offsets[c]));
+    const std::span<const CellFace> faces =
+        linear_cell_faces(static_cast<CellType>(types[c]), nodes.size());
+    if (faces.empty()) continue;
+    const bool named = std::all_of(nodes.begin(), nodes.end(), [&](std::int64_t p) {
+      return p >= 0 && static_cast<std::size_t>(p) < points;
+    });
+    int highest = 0;
+    for (const CellFace& face : faces) {
+      for (int k = 0; k < face.count; ++k) highest = std::max(highest, face.at[k]);
+    }
+    if (named && nodes.size() > static_cast<std::size_t>(highest)) visit(nodes, faces);
+  }
+}
+
+// Every point's neighbours along the cells' edges, sorted, each once (compressed rows).
+struct EdgeGraph {
+  std::vector<std::int64_t> start, neighbours;
+
+  std::span<const std::int64_t> of(std::int64_t p) const {
+    const auto at = static_cast<std::size_t>(p);
+    return std::span(neighbours).subspan(static_cast<std::size_t>(start[at]),
+                                         static_cast<std::size_t>(start[at + 1] - start[at]));
+  }
+};
+
+template <typename CellVisitor>
+EdgeGraph edge_graph(std::size_t points, CellVisitor for_each_cell) {
+  const auto for_each_edge = [&](auto use) {
+    for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+      for (const CellFace& face : faces) {
+        for (int k = 0; k < face.count; ++k) {
+          use(nodes[face.at[k]], nodes[face.at[(k + 1) % face.count]]);
+        }
+      }
+    });
+  };
+  EdgeGraph graph;
+  std::vector<std::int64_t> fill(points + 1, 0);
+  for_each_edge([&](std::int64_t a, std::int64_t b) {
+    ++fill[static_cast<std::size_t>(a) + 1];
+    ++fill[static_cast<std::size_t>(b) + 1];
+  });
+  for (std::size_t p = 0; p < points; ++p) fill[p + 1] += fill[p];
+  std::vector<std::int64_t> all(static_cast<std::size_t>(fill[points]));
+  std::vector<std::int64_t> next(fill.begin(), fill.end() - 1);
+  for_each_edge([&](std::int64_t a, std::int64_t b) {
+    all[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = b;
+    all[static_cast<std::size_t>(next[static_cast<std::size_t>(b)]++)] = a;
+  });
+  graph.start.assign(points + 1, 0);
+  graph.neighbours.reserve(all.size() / 2);
+  for (std::size_t p = 0; p < points; ++p) {
+    const auto first = all.begin() + fill[p], last = all.begin() + fill[p + 1];
+    std::sort(first, last);
+    graph.neighbours.insert(graph.neighbours.end(), first, std::unique(first, last));
+    graph.start[p + 1] = static_cast<std::int64_t>(graph.neighbours.size());
+  }
+  return graph;
+}
+
+struct Positions {
+  std::span<const double> xyz;
+
+  double distance(std::int64_t p, const std::array<double, 3>& x) const {
+    const double* q = &xyz[3 * static_cast<std::size_t>(p)];
+    return std::hypot(q[0] - x[0], q[1] - x[1], q[2] - x[2]);
+  }
+  // The mean of the points' positions.
+  template <std::size_t N>
+  std::array<double, 3> mean(const std::array<std::int64_t, N>& ps) const {
+    std::array<double, 3> m{};
+    for (std::int64_t p : ps) {
+      for (int k = 0; k < 3; ++k) m[k] += xyz[3 * static_cast<std::size_t>(p) + k] / N;
+    }
+    return m;
+  }
+  double between(std::int64_t a, std::int64_t b) const {
+    const double* q = &xyz[3 * static_cast<std::size_t>(b)];
+    return distance(a, {q[0], q[1], q[2]});
+  }
+};
+
+}  // namespace
+
+HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
+                                std::span<const std::int64_t> offsets,
+                                std::span<const std::int64_t> connectivity,
+                                std::span<const double> xyz) {
+  HangingNodes out;
+  const std::size_t points = xyz.size() / 3;
+  const auto for_each_cell = [&](auto visit) {
+    for_each_linear_cell(types, offsets, connectivity, points, visit);
+  };
+  const EdgeGraph graph = edge_graph(points, for_each_cell);
+  const Positions at{xyz};
+
+  // Midpoints: a third point joined to both ends of an edge, at its middle.
+  for (std::size_t a = 0; a < points; ++a) {
+    const auto ends = graph.of(static_cast<std::int64_t>(a));
+    for (std::int64_t b : ends) {
+      if (b <= static_cast<std::int64_t>(a)) continue;
+      const auto others = graph.of(b);
+      const std::array<double, 3> middle = at.mean(std::array{static_cast<std::int64_t>(a), b});
+      const double tolerance = kPlaceTolerance * at.between(static_cast<std::int64_t>(a), b);
+      for (auto i = ends.begin(), j = others.begin(); i != ends.end() && j != others.end();) {
+        if (*i < *j) {
+          ++i;
+        } else if (*j < *i) {
+          ++j;
+        } else {
+          if (at.distance(*i, middle) <= tolerance) {
+            out.midpoints_.push_back({static_cast<std::int64_t>(a), b, *i});
+          }
+          ++i, ++j;
+        }
+      }
+    }
+  }
+  if (out.midpoints_.empty()) return out;
+
+  // Centres: a point joined to the midpoints of a quadrilateral's four edges, at its mean.
+  for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+    for (const CellFace& face : faces) {
+      if (face.count != 4) continue;
+      std::array<std::int64_t, 4> corners{}, mids{};
+      for (int k = 0; k < 4; ++k) corners[k] = nodes[face.at[k]];
+      for (int k = 0; k < 4; ++k) mids[k] = out.midpoint(corners[k], corners[(k + 1) % 4]);
+      if (std::any_of(mids.begin(), mids.end(), [](std::int64_t m) { return m < 0; })) continue;
+      const std::array<double, 3> mean = at.mean(corners);
+      const double tolerance = kPlaceTolerance * at.between(corners[0], corners[2]);
+      for (std::int64_t c : graph.of(mids[0])) {
+        const bool joined = std::all_of(mids.begin() + 1, mids.end(), [&](std::int64_t m) {
+          const auto n = graph.of(m);
+          return std::binary_search(n.begin(), n.end(), c);
+        });
+        if (!joined || at.distance(c, mean) > tolerance) continue;
+        std::sort(corners.begin(), corners.end());
+        out.centres_.push_back({corners, c});
+        break;
+      }
+    }
+  });
+  const auto by_corners = [](const Centre& x, const Centre& y) { return x.corners < y.corners; };
+  std::sort(out.centres_.begin(), out.centres_.end(), by_corners);
+  out.centres_.erase(std::unique(out.centres_.begin(), out.centres_.end(),
+                                 [](const Centre& x, const Centre& y) {
+                                   return x.corners == y.corners;
+                                 }),
+                     out.centres_.end());
+  if (!out.centres_.empty()) {
+    out.centre_flags_.assign(points, 0);
+    for (const Centre& c : out.centres_) out.centre_flags_[static_cast<std::size_t>(c.centre)] = 1;
+  }
+  return out;
+}
+
+std::int64_t HangingNodes::midpoint(std::int64_t a, std::int64_t b) const {
+  if (a > b) std::swap(a, b);
+  const auto found = std::lower_bound(
+      midpoints_.begin(), midpoints_.end(), std::pair{a, b},
+      [](const Midpoint& m, const std::pair<std::int64_t, std::int64_t>& key) {
+        return std::pair{m.a, m.b} < key;
+      });
+  return found != midpoints_.end() && found->a == a && found->b == b ? found->mid : -1;
+}
+
+std::int64_t HangingNodes::centre(std::int64_t a, std::int64_t b, std::int64_t c,
+                                  std::int64_t d) const {
+  if (centres_.empty()) return -1;
+  std::array<std::int64_t, 4> key{a, b, c, d};
+  std::sort(key.begin(), key.end());
+  const auto found =
+      std::lower_bound(centres_.begin(), centres_.end(), key,
+                       [](const Centre& x, const std::array<std::int64_t, 4>& k) {
+                         return x.corners < k;
+                       });
+  return found != centres_.end() && found->corners == key ? found->centre : -1;
+}
+
+}  // namespace tetray
