@@ -25,6 +25,30 @@ inline constexpr CellFace kWedgeFaces[] = {
 inline constexpr CellFace kPyramidFaces[] = {
     {4, {0, 1, 2, 3}}, {3, {0, 1, 4}}, {3, {1, 2, 4}}, {3, {2, 3, 4}}, {3, {3, 0, 4}}};
 
+// The edges of the linear cells, each once, as pairs of positions in the node list.
+using CellEdge = std::array<int, 2>;
+inline constexpr CellEdge kTetraEdges[] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+inline constexpr CellEdge kHexahedronEdges[] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                                {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+inline constexpr CellEdge kWedgeEdges[] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5},
+                                           {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+inline constexpr CellEdge kPyramidEdges[] = {{0, 1}, {1, 2}, {2, 3}, {3, 0},
+                                             {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+
+// The edges of a linear cell given its faces (linear_cell_faces below).
+inline std::span<const CellEdge> edges_of(std::span<const CellFace> faces) {
+  switch (faces.size()) {
+    case 4:
+      return kTetraEdges;
+    case 6:
+      return kHexahedronEdges;
+    case 5:
+      return faces[0].count == 3 ? std::span<const CellEdge>(kWedgeEdges)
+                                 : std::span<const CellEdge>(kPyramidEdges);
+  }
+  return {};
+}
+
 // The faces of a linear cell of this type and node count; none for a quadratic cell.
 inline std::span<const CellFace> linear_cell_faces(CellType type, std::size_t nodes) {
   switch (type) {
@@ -39,8 +63,7 @@ inline std::span<const CellFace> linear_cell_faces(CellType type, std::size_t no
     case CellType::lagrange_tetrahedron:
       return nodes == 4 ? std::span<const CellFace>(kTetraFaces) : std::span<const CellFace>();
     case CellType::lagrange_hexahedron:
-      return nodes == 8 ? std::span<const CellFace>(kHexahedronFaces)
-                        : std::span<const CellFace>();
+      return nodes == 8 ? std::span<const CellFace>(kHexahedronFaces) : std::span<const CellFace>();
     case CellType::quadratic_tetra:
       return {};
   }

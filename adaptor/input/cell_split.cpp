@@ -105,7 +105,7 @@ class Splitter {
     } else {
       cone(nodes, faces);
     }
-    if (!hanging_.empty()) bisect_at_hanging_nodes(nodes, faces);
+    if (!hanging_.empty() && touches_hanging_edge(nodes)) bisect_at_hanging_nodes(nodes, faces);
     for (const auto& t : cell_tets_) emit(t[0], t[1], t[2], t[3]);
   }
 
@@ -151,6 +151,11 @@ class Splitter {
     }
   }
 
+  bool touches_hanging_edge(std::span<const std::int64_t> nodes) const {
+    return std::any_of(nodes.begin(), nodes.end(),
+                       [&](std::int64_t p) { return hanging_.ends_hanging_edge(p); });
+  }
+
   // Bisects the cell's tets at the hanging nodes on its boundary (hanging_nodes.hpp): first at
   // each face centre, along the face's diagonal (the face then comes out as four triangles round
   // the centre), then at each edge midpoint, in the points' order, so that two cells sharing a face
@@ -158,22 +163,20 @@ class Splitter {
   void bisect_at_hanging_nodes(std::span<const std::int64_t> nodes,
                                std::span<const CellFace> faces) {
     for (const CellFace& face : faces) {
-      if (face.count != 4) continue;
+      if (face.count != 4 || !hanging_.ends_hanging_edge(nodes[face.at[0]])) continue;
       const std::array<std::int64_t, 4> f = from_smallest(nodes, face);
       const std::int64_t centre = hanging_.centre(f[0], f[1], f[2], f[3]);
       if (centre >= 0) bisect(f[0], f[2], centre);
     }
     midpoints_.clear();
-    for (const CellFace& face : faces) {
-      for (int k = 0; k < face.count; ++k) {
-        const std::int64_t a = nodes[face.at[k]], b = nodes[face.at[(k + 1) % face.count]];
-        const std::int64_t mid = hanging_.midpoint(a, b);
-        if (mid >= 0) midpoints_.push_back({mid, std::min(a, b), std::max(a, b)});
-      }
+    for (const CellEdge& edge : edges_of(faces)) {
+      const std::int64_t a = nodes[edge[0]], b = nodes[edge[1]];
+      if (!hanging_.ends_hanging_edge(a) || !hanging_.ends_hanging_edge(b)) continue;
+      const std::int64_t mid = hanging_.midpoint(a, b);
+      if (mid >= 0) midpoints_.push_back({mid, a, b});
     }
     std::sort(midpoints_.begin(), midpoints_.end(),
               [&](const auto& x, const auto& y) { return smaller(x[0], y[0]); });
-    midpoints_.erase(std::unique(midpoints_.begin(), midpoints_.end()), midpoints_.end());
     for (const auto& [mid, a, b] : midpoints_) bisect(a, b, mid);
   }
 

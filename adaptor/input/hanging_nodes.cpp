@@ -41,14 +41,19 @@ void for_each_linear_cell(std::span<const std::uint8_t> types,
   }
 }
 
-// Every point's neighbours along the cells' edges, sorted, each once (compressed rows).
+// Every point's neighbours along the cells' edges, each once, in no order (compressed rows).
 struct EdgeGraph {
   std::vector<std::int64_t> start, neighbours;
 
   std::span<const std::int64_t> of(std::int64_t p) const {
     const auto at = static_cast<std::size_t>(p);
-    return std::span(neighbours).subspan(static_cast<std::size_t>(start[at]),
-                                         static_cast<std::size_t>(start[at + 1] - start[at]));
+    return std::span(neighbours)
+        .subspan(static_cast<std::size_t>(start[at]),
+                 static_cast<std::size_t>(start[at + 1] - start[at]));
+  }
+  bool joined(std::int64_t p, std::int64_t q) const {
+    const auto n = of(p);
+    return std::find(n.begin(), n.end(), q) != n.end();
   }
 };
 
@@ -56,14 +61,9 @@ template <typename CellVisitor>
 EdgeGraph edge_graph(std::size_t points, CellVisitor for_each_cell) {
   const auto for_each_edge = [&](auto use) {
     for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
-      for (const CellFace& face : faces) {
-        for (int k = 0; k < face.count; ++k) {
-          use(nodes[face.at[k]], nodes[face.at[(k + 1) % face.count]]);
-        }
-      }
+      for (const CellEdge& edge : edges_of(faces)) use(nodes[edge[0]], nodes[edge[1]]);
     });
   };
-  EdgeGraph graph;
   std::vector<std::int64_t> fill(points + 1, 0);
   for_each_edge([&](std::int64_t a, std::int64_t b) {
     ++fill[static_cast<std::size_t>(a) + 1];
@@ -76,14 +76,24 @@ EdgeGraph edge_graph(std::size_t points, CellVisitor for_each_cell) {
     all[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = b;
     all[static_cast<std::size_t>(next[static_cast<std::size_t>(b)]++)] = a;
   });
+  // Each edge is listed by every cell around it: keep it once, in place (a stamp per point says
+  // which row last kept it; no sort).
+  EdgeGraph graph;
   graph.start.assign(points + 1, 0);
-  graph.neighbours.reserve(all.size() / 2);
+  std::vector<std::int64_t> kept_in(points, -1);
+  std::size_t out = 0;
   for (std::size_t p = 0; p < points; ++p) {
-    const auto first = all.begin() + fill[p], last = all.begin() + fill[p + 1];
-    std::sort(first, last);
-    graph.neighbours.insert(graph.neighbours.end(), first, std::unique(first, last));
-    graph.start[p + 1] = static_cast<std::int64_t>(graph.neighbours.size());
+    for (auto k = static_cast<std::size_t>(fill[p]); k < static_cast<std::size_t>(fill[p + 1]);
+         ++k) {
+      const std::int64_t q = all[k];
+      if (kept_in[static_cast<std::size_t>(q)] == static_cast<std::int64_t>(p)) continue;
+      kept_in[static_cast<std::size_t>(q)] = static_cast<std::int64_t>(p);
+      all[out++] = q;
+    }
+    graph.start[p + 1] = static_cast<std::int64_t>(out);
   }
+  all.resize(out);
+  graph.neighbours = std::move(all);
   return graph;
 }
 
@@ -123,29 +133,33 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
   const EdgeGraph graph = edge_graph(points, for_each_cell);
   const Positions at{xyz};
 
-  // Midpoints: a third point joined to both ends of an edge, at its middle.
-  for (std::size_t a = 0; a < points; ++a) {
-    const auto ends = graph.of(static_cast<std::int64_t>(a));
-    for (std::int64_t b : ends) {
-      if (b <= static_cast<std::int64_t>(a)) continue;
-      const auto others = graph.of(b);
-      const std::array<double, 3> middle = at.mean(std::array{static_cast<std::int64_t>(a), b});
-      const double tolerance = kPlaceTolerance * at.between(static_cast<std::int64_t>(a), b);
-      for (auto i = ends.begin(), j = others.begin(); i != ends.end() && j != others.end();) {
-        if (*i < *j) {
-          ++i;
-        } else if (*j < *i) {
-          ++j;
-        } else {
-          if (at.distance(*i, middle) <= tolerance) {
-            out.midpoints_.push_back({static_cast<std::int64_t>(a), b, *i});
-          }
-          ++i, ++j;
+  // Midpoints: a third point joined to both ends of an edge, at its middle. The neighbours of a
+  // are stamped with a, then each neighbour b's neighbours are looked up in the stamps.
+  std::vector<std::int64_t> stamp(points, -1);
+  for (std::size_t p = 0; p < points; ++p) {
+    const auto a = static_cast<std::int64_t>(p);
+    for (std::int64_t q : graph.of(a)) stamp[static_cast<std::size_t>(q)] = a;
+    for (std::int64_t b : graph.of(a)) {
+      if (b <= a) continue;
+      for (std::int64_t m : graph.of(b)) {
+        if (stamp[static_cast<std::size_t>(m)] != a) continue;
+        // A triangle of edges: rare in a mesh without tets or triangular faces.
+        const std::array<double, 3> middle = at.mean(std::array{a, b});
+        if (at.distance(m, middle) <= kPlaceTolerance * at.between(a, b)) {
+          out.midpoints_.push_back({a, b, m});
         }
       }
     }
   }
+  std::sort(out.midpoints_.begin(), out.midpoints_.end(), [](const Midpoint& x, const Midpoint& y) {
+    return std::pair{x.a, x.b} < std::pair{y.a, y.b};
+  });
   if (out.midpoints_.empty()) return out;
+  out.edge_end_flags_.assign(points, 0);
+  for (const Midpoint& m : out.midpoints_) {
+    out.edge_end_flags_[static_cast<std::size_t>(m.a)] = 1;
+    out.edge_end_flags_[static_cast<std::size_t>(m.b)] = 1;
+  }
 
   // Centres: a point joined to the midpoints of a quadrilateral's four edges, at its mean.
   for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
@@ -153,15 +167,17 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
       if (face.count != 4) continue;
       std::array<std::int64_t, 4> corners{}, mids{};
       for (int k = 0; k < 4; ++k) corners[k] = nodes[face.at[k]];
+      if (!std::all_of(corners.begin(), corners.end(),
+                       [&](std::int64_t p) { return out.ends_hanging_edge(p); })) {
+        continue;
+      }
       for (int k = 0; k < 4; ++k) mids[k] = out.midpoint(corners[k], corners[(k + 1) % 4]);
       if (std::any_of(mids.begin(), mids.end(), [](std::int64_t m) { return m < 0; })) continue;
       const std::array<double, 3> mean = at.mean(corners);
       const double tolerance = kPlaceTolerance * at.between(corners[0], corners[2]);
       for (std::int64_t c : graph.of(mids[0])) {
-        const bool joined = std::all_of(mids.begin() + 1, mids.end(), [&](std::int64_t m) {
-          const auto n = graph.of(m);
-          return std::binary_search(n.begin(), n.end(), c);
-        });
+        const bool joined = std::all_of(mids.begin() + 1, mids.end(),
+                                        [&](std::int64_t m) { return graph.joined(m, c); });
         if (!joined || at.distance(c, mean) > tolerance) continue;
         std::sort(corners.begin(), corners.end());
         out.centres_.push_back({corners, c});
@@ -171,11 +187,10 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
   });
   const auto by_corners = [](const Centre& x, const Centre& y) { return x.corners < y.corners; };
   std::sort(out.centres_.begin(), out.centres_.end(), by_corners);
-  out.centres_.erase(std::unique(out.centres_.begin(), out.centres_.end(),
-                                 [](const Centre& x, const Centre& y) {
-                                   return x.corners == y.corners;
-                                 }),
-                     out.centres_.end());
+  out.centres_.erase(
+      std::unique(out.centres_.begin(), out.centres_.end(),
+                  [](const Centre& x, const Centre& y) { return x.corners == y.corners; }),
+      out.centres_.end());
   if (!out.centres_.empty()) {
     out.centre_flags_.assign(points, 0);
     for (const Centre& c : out.centres_) out.centre_flags_[static_cast<std::size_t>(c.centre)] = 1;
@@ -185,11 +200,11 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
 
 std::int64_t HangingNodes::midpoint(std::int64_t a, std::int64_t b) const {
   if (a > b) std::swap(a, b);
-  const auto found = std::lower_bound(
-      midpoints_.begin(), midpoints_.end(), std::pair{a, b},
-      [](const Midpoint& m, const std::pair<std::int64_t, std::int64_t>& key) {
-        return std::pair{m.a, m.b} < key;
-      });
+  const auto found =
+      std::lower_bound(midpoints_.begin(), midpoints_.end(), std::pair{a, b},
+                       [](const Midpoint& m, const std::pair<std::int64_t, std::int64_t>& key) {
+                         return std::pair{m.a, m.b} < key;
+                       });
   return found != midpoints_.end() && found->a == a && found->b == b ? found->mid : -1;
 }
 
@@ -198,11 +213,9 @@ std::int64_t HangingNodes::centre(std::int64_t a, std::int64_t b, std::int64_t c
   if (centres_.empty()) return -1;
   std::array<std::int64_t, 4> key{a, b, c, d};
   std::sort(key.begin(), key.end());
-  const auto found =
-      std::lower_bound(centres_.begin(), centres_.end(), key,
-                       [](const Centre& x, const std::array<std::int64_t, 4>& k) {
-                         return x.corners < k;
-                       });
+  const auto found = std::lower_bound(
+      centres_.begin(), centres_.end(), key,
+      [](const Centre& x, const std::array<std::int64_t, 4>& k) { return x.corners < k; });
   return found != centres_.end() && found->corners == key ? found->centre : -1;
 }
 

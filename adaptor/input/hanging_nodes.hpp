@@ -29,8 +29,7 @@ class HangingNodes {
   // split_cells); xyz holds each point's position (3 per point).
   static HangingNodes find(std::span<const std::uint8_t> types,
                            std::span<const std::int64_t> offsets,
-                           std::span<const std::int64_t> connectivity,
-                           std::span<const double> xyz);
+                           std::span<const std::int64_t> connectivity, std::span<const double> xyz);
 
   bool empty() const { return midpoints_.empty(); }
   std::size_t midpoint_count() const { return midpoints_.size(); }
@@ -40,6 +39,11 @@ class HangingNodes {
   std::int64_t midpoint(std::int64_t a, std::int64_t b) const;
   // The hanging centre of the quadrilateral with corners a, b, c, d (any order), or -1.
   std::int64_t centre(std::int64_t a, std::int64_t b, std::int64_t c, std::int64_t d) const;
+  // Whether point p ends an edge with a hanging midpoint: a cell none of whose points do has no
+  // hanging node (the corners of a face with a hanging centre end such edges too).
+  bool ends_hanging_edge(std::int64_t p) const {
+    return !edge_end_flags_.empty() && edge_end_flags_[static_cast<std::size_t>(p)] != 0;
+  }
   // Whether point p is the hanging centre of a face: the split orders such points before all
   // others, so that the finer cells cut their faces through it as the coarse cell does.
   bool is_centre(std::int64_t p) const {
@@ -57,6 +61,7 @@ class HangingNodes {
 
   std::vector<Midpoint> midpoints_;  // sorted by (a, b)
   std::vector<Centre> centres_;      // sorted by corners
+  std::vector<std::uint8_t> edge_end_flags_;
   std::vector<std::uint8_t> centre_flags_;
 };
 

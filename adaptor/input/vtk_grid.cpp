@@ -76,8 +76,7 @@ std::string split_into_tets(const VtkCells& cells, TetGrid& grid) {
     keys[p] =
         render::position_hash(grid.points[3 * p], grid.points[3 * p + 1], grid.points[3 * p + 2]);
   }
-  SplitCells split =
-      split_cells(cells.types, cells.offsets, cells.connectivity, keys, grid.points);
+  SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys, grid.points);
   if (!split.error.empty()) return split.error;
   grid.tets = std::move(split.tets);
   if (!grid.ghost.empty()) {

@@ -116,8 +116,8 @@ TEST(CellSplit, FindsEachHangingNodeAndNoOther) {
   EXPECT_EQ(split.hanging_midpoints, 40u);
   for (const testing::CellKind& kind : kCellKinds) {
     const CellMesh m = lattice(3, kind.make);
-    split = split_cells(m.types, m.offsets, m.connectivity, shuffled_keys(m.points.size(), 3),
-                        m.xyz());
+    split =
+        split_cells(m.types, m.offsets, m.connectivity, shuffled_keys(m.points.size(), 3), m.xyz());
     EXPECT_EQ(split.hanging_midpoints + split.hanging_centres, 0u) << kind.name;
   }
 }
@@ -131,7 +131,8 @@ TEST(CellSplit, HangingNodesSplitAlikeUnderAnyNumberingOfThePoints) {
     const std::vector<std::uint64_t> keys = shuffled_keys(m.points.size(), 11);
     const std::vector<double> xyz = m.xyz();
     // The tets of each cell as sorted point quadruples, in the original numbering.
-    const auto tets_by_cell = [&](const SplitCells& split, const std::vector<std::int64_t>& original) {
+    const auto tets_by_cell = [&](const SplitCells& split,
+                                  const std::vector<std::int64_t>& original) {
       std::vector<std::vector<std::array<std::int64_t, 4>>> cells(m.types.size());
       for (std::size_t t = 0; t < split.tet_cell.size(); ++t) {
         std::array<std::int64_t, 4> tet{};
@@ -208,7 +209,8 @@ TEST(CellSplit, WhatItCannotSplitIsAnErrorNamingTheCell) {
   for (const Case& c : cases) {
     const std::vector<std::uint8_t> types = {10, c.type};
     const std::vector<std::int64_t> offsets = {0, 4, static_cast<std::int64_t>(4 + c.nodes)};
-    const SplitCells split = split_cells(types, offsets, std::span(nodes).first(4 + c.nodes), keys, {});
+    const SplitCells split =
+        split_cells(types, offsets, std::span(nodes).first(4 + c.nodes), keys, {});
     EXPECT_NE(split.error.find(c.message), std::string::npos) << split.error;
   }
   const std::vector<std::uint8_t> tet = {10};

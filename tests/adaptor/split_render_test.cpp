@@ -93,8 +93,8 @@ TEST(SplitCells, IgnoringTheHangingNodesCracksTheSurface) {
     }
     int pinholes = 0;
     for (int k = 0; k < failures.size(); ++k) {
-      pinholes += std::string(failures.GetTestPartResult(k).message()).find("pinhole") !=
-                  std::string::npos;
+      pinholes +=
+          std::string(failures.GetTestPartResult(k).message()).find("pinhole") != std::string::npos;
     }
     EXPECT_GT(pinholes, 0) << kind.name;
   }

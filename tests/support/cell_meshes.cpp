@@ -117,7 +117,8 @@ void refined_cube(CellMesh& m, LatticePoint o) {
                                o[2] + 0.5 * (child >> 2)};
     std::vector<std::int64_t> nodes;
     for (int k = 0; k < 8; ++k) {
-      nodes.push_back(m.point({half[0] + 0.5 * dx[k], half[1] + 0.5 * dy[k], half[2] + 0.5 * dz[k]}));
+      nodes.push_back(
+          m.point({half[0] + 0.5 * dx[k], half[1] + 0.5 * dy[k], half[2] + 0.5 * dz[k]}));
     }
     m.add(VTK_HEXAHEDRON, nodes);
   }

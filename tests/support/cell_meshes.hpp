@@ -63,7 +63,7 @@ CellMesh lattice(int n, CellMaker make);
 // Meshes with hanging nodes, as adaptive refinement makes them: some cubes are one hexahedron,
 // the others eight half-size hexahedra, whose corners hang at the middle of the coarse cubes'
 // edges and faces where the two meet.
-void hexahedra_refined_in_half(CellMesh& m, LatticePoint corner);  // cubes with x >= n / 2
+void hexahedra_refined_in_half(CellMesh& m, LatticePoint corner);      // cubes with x >= n / 2
 void hexahedra_refined_alternately(CellMesh& m, LatticePoint corner);  // cubes with even i+j+k
 // Cubes with x >= n / 2 or y >= n / 2: coarse faces with two edges on refinement interfaces.
 void hexahedra_refined_in_an_l(CellMesh& m, LatticePoint corner);

@@ -13,7 +13,8 @@ namespace {
 
 Json::Value run_study() {
   return tetray::testing::run_for_json(
-      std::string(TETRAY_SPLIT_STUDY) + " --sizes 4 8 --levels 1 2 --reference 48 --size 128",
+      std::string(TETRAY_SPLIT_STUDY) +
+          " --sizes 4 8 --levels 1 2 --reference 48 --size 128 --split-sizes 6 --split-runs 1",
       "tetray_split_study.json");
 }
 
@@ -31,7 +32,7 @@ const Json::Value& row(const Json::Value& rows, const std::string& field, int ce
 }
 
 TEST(SplitStudy, ErrorFallsWithLevelAndMeshSize) {
-  const Json::Value rows = run_study();
+  const Json::Value rows = run_study()["images"];
   ASSERT_TRUE(rows.isArray());
   EXPECT_EQ(rows.size(), 8u);
   for (const char* field : {"Q1 hexahedra", "Q2 hexahedra"}) {
@@ -45,6 +46,23 @@ TEST(SplitStudy, ErrorFallsWithLevelAndMeshSize) {
               7 * row(rows, field, 4, 1)["tets"].asUInt64());
     EXPECT_TRUE(row(rows, field, 8, 2)["trace_ms"].isNumeric()) << field;
   }
+}
+
+// The split's timing rows: on 6^3 hexahedra nothing hangs; with the half x >= 0 refined, the
+// interface holds 6 x 6 coarse faces, each with a hanging centre, and 2 x 7 x 6 coarse edges, each
+// with a hanging midpoint; every coarse cell splits into 6 tets at least, every fine one into 6.
+TEST(SplitStudy, TimesTheSplitWithTheHangingNodesItFinds) {
+  const Json::Value rows = run_study()["split"];
+  ASSERT_TRUE(rows.isArray());
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["hanging_midpoints"].asUInt64(), 0u);
+  EXPECT_EQ(rows[0]["tets"].asUInt64(), 6u * 216);
+  EXPECT_EQ(rows[1]["cells"].asUInt64(), 108u + 8 * 108);
+  EXPECT_EQ(rows[1]["hanging_centres"].asUInt64(), 36u);
+  EXPECT_EQ(rows[1]["hanging_midpoints"].asUInt64(), 84u);
+  EXPECT_GT(rows[1]["tets"].asUInt64(), 6u * (108 + 8 * 108));
+  EXPECT_TRUE(rows[1]["split_ms"].isNumeric());
+  EXPECT_TRUE(rows[1]["split_without_search_ms"].isNumeric());
 }
 
 }  // namespace
