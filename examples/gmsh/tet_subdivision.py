@@ -30,11 +30,12 @@ def red_refinement(cuts):
                                   (b + d) // 2, (c + d) // 2)
         children = [
             (a, ab, ac, ad), (ab, b, bc, bd), (ac, bc, c, cd), (ad, bd, cd, d),
-            # The inner octahedron, cut along its diagonal ac-bd into 4 tets.
-            (ab, ac, ad, bd), (ab, ac, bc, bd), (ac, ad, bd, cd), (ac, bc, bd, cd),
+            # The inner octahedron, cut along its diagonal ab-cd into 4 tets, as tetray cuts
+            # a 10-node tet (so level 2 refines each of tetray's level-1 tets).
+            (ab, cd, bc, ac), (ab, cd, ac, ad), (ab, cd, ad, bd), (ab, cd, bd, bc),
         ]
         tets = np.concatenate([np.stack(child, axis=1) for child in children])
-    # Two of the octahedron's tets come out inverted: swap their last two corners.
+    # Sub-tets that come out inverted: swap their last two corners.
     edges = tets[:, 1:, 1:] - tets[:, :1, 1:]
     inverted = np.linalg.det(edges.astype(np.float64)) < 0
     tets[inverted] = tets[inverted][:, [0, 1, 3, 2]]
@@ -81,9 +82,13 @@ def subdivide(nodes, gmsh_tets, values, level):
     point_of_row[order] = point_of_sorted
     maker = order[first]  # one (tet, lattice point) row per new point
     tet_of, lattice_of = np.divmod(maker, len(lattice))
-    weights = basis[lattice_of]  # (q, 10)
-    points = np.einsum("qk,qkd->qd", weights, nodes[gmsh_tets[tet_of]])
-    point_values = np.einsum("qk,qk->q", weights, values[gmsh_tets[tet_of]])
+    points = np.empty((len(maker), 3))
+    point_values = np.empty(len(maker))
+    for block in range(0, len(maker), 1 << 20):  # in blocks: (q, 10, 3) at once is gigabytes
+        part = slice(block, block + (1 << 20))
+        weights, cell_nodes = basis[lattice_of[part]], gmsh_tets[tet_of[part]]  # (b, 10) each
+        points[part] = np.einsum("qk,qkd->qd", weights, nodes[cell_nodes])
+        point_values[part] = np.einsum("qk,qk->q", weights, values[cell_nodes])
     rows = point_of_row.reshape(count, len(lattice))
     tets = rows[:, local.reshape(-1, 4)].reshape(-1, 4)
     return np.ascontiguousarray(points), np.ascontiguousarray(tets), point_values
