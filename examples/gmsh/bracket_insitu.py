@@ -73,8 +73,9 @@ def main():
             if report.rendered:
                 blocked_seconds.append(report.seconds_blocked)
     if comm.rank == 0:
-        print(f"per step (medians, rank 0 of {comm.size}): the field {1e3 * np.median(work_seconds):.2f} ms, "
-              f"tetray blocked {1e3 * np.median(blocked_seconds):.1f} ms per rendered step "
+        print(f"per step (medians, rank 0 of {comm.size}): the field "
+              f"{1e3 * np.median(work_seconds):.2f} ms, tetray blocked "
+              f"{1e3 * np.median(blocked_seconds):.1f} ms per rendered step "
               f"({len(blocked_seconds)} rendered)", flush=True)
 
 

@@ -59,7 +59,8 @@ def _build_geometry():
     occ.synchronize()
     # The base plate's free corners: its vertical edges at x = LENGTH.
     free = _curves_in(((LENGTH - eps, -eps, -eps), (LENGTH + eps, eps, THICK + eps)))
-    free += _curves_in(((LENGTH - eps, WIDTH - eps, -eps), (LENGTH + eps, WIDTH + eps, THICK + eps)))
+    free += _curves_in(((LENGTH - eps, WIDTH - eps, -eps),
+                        (LENGTH + eps, WIDTH + eps, THICK + eps)))
     (part,) = occ.fillet([part[1]], free, [BASE_FILLET])
     occ.synchronize()
     # Bolt holes and a slot.

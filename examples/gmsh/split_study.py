@@ -14,9 +14,10 @@ tetray (the field's isosurfaces, one camera) and its depth image (EXR Z) compare
 reference level's: the mean and largest depth difference over the pixels both hit, relative to
 the part's size (the diagonal of its box), the largest again leaving out the pixels beside a
 silhouette or occlusion edge of the reference (where a pixel of one image can see a surface
-behind the other's), and the share of the pixels either hits that one hits and the other misses. Times: split ms is this script's subdivision plus tetray's ingest (its
-own split at level 1), build and trace ms are tetray's (tetray_log.csv), medians of --repeat
-renders, each a topology change (a new BVH).
+behind the other's), and the share of the pixels either hits that one hits and the other
+misses. Times: split ms is this script's subdivision plus tetray's ingest (its own split at
+level 1), build and trace ms are tetray's (tetray_log.csv), medians of --repeat renders, each a
+topology change (a new BVH).
 
 --check MEAN MISS exits 1 unless level 1 is within MEAN relative mean depth error and MISS (a
 fraction) hit/miss mismatch. --gmsh-order passes gmsh's node order to tetray unchanged (wrong:
@@ -178,8 +179,9 @@ def main():
 
     print(f"bracket: {len(gmsh_tets)} quadratic tets (--size {args.size:g} mm), "
           f"{args.pixels}x{args.pixels} px, errors relative to the part's size {size:.1f} mm, "
-          f"reference level {args.reference} ({reference_tets:,} tets, split {reference_ms[0]:.0f} ms, "
-          f"build {reference_ms[1]:.0f} ms, trace {reference_ms[2]:.0f} ms)")
+          f"reference level {args.reference} ({reference_tets:,} tets, "
+          f"split {reference_ms[0]:.0f} ms, build {reference_ms[1]:.0f} ms, "
+          f"trace {reference_ms[2]:.0f} ms)")
     print(f"{'level':>5} {'tets':>11} {'split ms':>9} {'build ms':>9} {'trace ms':>9} "
           f"{'mean depth':>11} {'max depth':>10} {'max off edges':>13} {'hit/miss':>9}")
     for r in rows:

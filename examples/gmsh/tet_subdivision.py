@@ -3,17 +3,17 @@
 field interpolated at the new points.
 
 Level 1 is what tetray does to a 10-node tet: one red refinement, 8 tets through the edge nodes.
-Level 2^k repeats the red refinement k more times in the reference tet. The new points are placed by gmsh's own
-Lagrange basis functions in gmsh's node order (gmsh.model.mesh.getBasisFunctions), not by the
-VTK reordering the example passes to tetray: a reference made here would disagree with tetray's
-image if that reordering were wrong. A point shared by neighbouring tets (on an edge or face) is
-made once, from one tet, so the finer mesh is watertight.
+Level 2^k repeats the red refinement k more times in the reference tet. The new points are
+placed by gmsh's own Lagrange basis functions in gmsh's node order
+(gmsh.model.mesh.getBasisFunctions), not by the VTK reordering the example passes to tetray: a
+reference made here would disagree with tetray's image if that reordering were wrong. A point
+shared by neighbouring tets (on an edge or face) is made once, from one tet, so the finer mesh is
+watertight.
 """
 
 import numpy as np
 
-import bracket_part  # gmsh, with a clear error when it is missing
-from bracket_part import GMSH_TET10
+from bracket_part import GMSH_TET10  # first: it says what to install when gmsh is missing
 import gmsh
 
 
