@@ -36,6 +36,9 @@ test_packages=(
   clang libclang-rt-14-dev qemu-user libsimgrid-dev
   pybind11-dev python3-dev python3-numpy python3-mpi4py python3-png python3-dolfinx
   chromium python3-matplotlib python3-pil xvfb xauth libgl1-mesa-dri
+  # gmsh 4.8 with OpenCASCADE for the curved-part example (examples/gmsh/): meshes a CAD part
+  # into quadratic tets in its tests
+  python3-gmsh
 )
 
 packages=("${demo_packages[@]}")
