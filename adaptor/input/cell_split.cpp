@@ -280,6 +280,14 @@ std::string offsets_problem(std::span<const std::int64_t> offsets, std::size_t c
   return {};
 }
 
+bool has_quadrilateral_faces(std::span<const std::uint8_t> types) {
+  return std::any_of(types.begin(), types.end(), [](std::uint8_t t) {
+    const auto type = static_cast<CellType>(t);
+    return type == CellType::hexahedron || type == CellType::wedge ||
+           type == CellType::pyramid || type == CellType::lagrange_hexahedron;
+  });
+}
+
 }  // namespace
 
 SplitCells split_cells(std::span<const std::uint8_t> types, std::span<const std::int64_t> offsets,
@@ -288,9 +296,11 @@ SplitCells split_cells(std::span<const std::uint8_t> types, std::span<const std:
   SplitCells out;
   out.error = offsets_problem(offsets, types.size(), connectivity.size());
   if (!out.error.empty()) return out;
-  const HangingNodes hanging = xyz.size() == 3 * point_keys.size()
-                                   ? HangingNodes::find(types, offsets, connectivity, xyz)
-                                   : HangingNodes();
+  // Octree refinement leaves hanging nodes on hexahedra (and the cells mixed with them); meshes of
+  // tets alone are refined conformingly and are not searched.
+  const bool searched = xyz.size() == 3 * point_keys.size() && has_quadrilateral_faces(types);
+  const HangingNodes hanging =
+      searched ? HangingNodes::find(types, offsets, connectivity, xyz) : HangingNodes();
   out.hanging_midpoints = hanging.midpoint_count();
   out.hanging_centres = hanging.centre_count();
   Splitter splitter(point_keys, hanging, out);
