@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,39 @@ TEST(Cells, EveryKindRendersTheBallAndTheSameImageOnAnyRankCount) {
     const std::string whole = slurp(png);
     ASSERT_FALSE(whole.empty()) << name;
     EXPECT_EQ(whole, slurp(split + "/ball/ball_000000.png")) << name << " on " << world_size();
+  }
+}
+
+// Adaptively refined meshes (coarse hexahedra against refined ones, the field constrained at the
+// hanging nodes as the solver gives it) split among the ranks with the ghost layer a solver such
+// as deal.II passes: every rank finds the hanging nodes of its cells, and the image is that of one
+// rank holding every cell. The cells are ordered by x, so each rank's block meets the refined
+// half or the alternate cubes along its partition boundaries.
+TEST(Cells, HangingNodesGiveTheSameImageOnAnyRankCountWithAGhostLayer) {
+  const SharedDir shared("cells_hanging");
+  for (const CellKind& kind : kHangingKinds) {
+    const CellMesh mesh = lattice(8, kind.make);
+    std::vector<double> values;
+    for (const double x : mesh.xyz(-1, 1)) values.push_back(x);  // x, y, z of each point
+    std::vector<double> distance(mesh.points.size());
+    for (std::size_t p = 0; p < distance.size(); ++p) {
+      distance[p] = std::hypot(values[3 * p] - 0.06, values[3 * p + 1] + 0.04, values[3 * p + 2]);
+    }
+    constrain_hanging_values(mesh, distance);
+    const std::string index = std::to_string(&kind - kHangingKinds);
+    const std::string one = shared.path() + "/one_" + index,
+                      split = shared.path() + "/split_" + index;
+    const std::size_t cells = mesh.types.size();
+    if (rank() == 0) render(MPI_COMM_SELF, one, share_with_ghosts(mesh, 0, cells, 0, distance));
+    const auto bound = [&](int r) { return cells * static_cast<std::size_t>(r) / world_size(); };
+    render(MPI_COMM_WORLD, split,
+           share_with_ghosts(mesh, bound(rank()), bound(rank() + 1), 11 + rank(), distance));
+    if (rank() != 0) continue;
+    const std::string whole = slurp(one + "/ball/ball_000000.png");
+    ASSERT_FALSE(whole.empty()) << kind.name;
+    EXPECT_GT(tetray_png_covered_pixels((one + "/ball/ball_000000.png").c_str()), kSide * kSide / 8)
+        << kind.name;
+    EXPECT_EQ(whole, slurp(split + "/ball/ball_000000.png")) << kind.name << " on " << world_size();
   }
 }
 

@@ -17,6 +17,7 @@ struct RankCells {
   std::vector<double> xyz, distance;
   std::vector<std::uint8_t> types;
   std::vector<std::int64_t> offsets{0}, connectivity;
+  std::vector<std::uint8_t> ghost;  // per cell (1: another rank's), or empty
 
   MeshView view() const;  // as CellsView with int64 offsets and connectivity
   std::vector<FieldView> fields() const;
@@ -25,6 +26,12 @@ struct RankCells {
 // The cells [first, last) of `mesh`, mapped onto [-1, 1]^3, their points in the order of
 // `seed`'s shuffle (seed 0: the mesh's own order).
 RankCells share(const CellMesh& mesh, std::size_t first, std::size_t last, unsigned seed);
+
+// As share, with the ghost layer a solver such as deal.II gives: besides the cells [first, last),
+// every other cell that shares a point with them, flagged as a ghost; and with the field
+// `values` (one per point of `mesh`) instead of the distance.
+RankCells share_with_ghosts(const CellMesh& mesh, std::size_t first, std::size_t last,
+                            unsigned seed, const std::vector<double>& values);
 
 // The config of one scene, "ball": the isosurface distance = `radius`, PNG only, a side x side
 // image from `eye` ("[x, y, z]") looking at the centre with +y up.
