@@ -185,6 +185,7 @@ class Splitter {
     const std::size_t count = cell_tets_.size();
     for (std::size_t t = 0; t < count; ++t) {
       std::array<std::int64_t, 4>& tet = cell_tets_[t];
+      if (std::find(tet.begin(), tet.end(), mid) != tet.end()) continue;  // a collapsed cell's
       const auto at_a = std::find(tet.begin(), tet.end(), a);
       const auto at_b = std::find(tet.begin(), tet.end(), b);
       if (at_a == tet.end() || at_b == tet.end()) continue;
@@ -283,8 +284,8 @@ std::string offsets_problem(std::span<const std::int64_t> offsets, std::size_t c
 bool has_quadrilateral_faces(std::span<const std::uint8_t> types) {
   return std::any_of(types.begin(), types.end(), [](std::uint8_t t) {
     const auto type = static_cast<CellType>(t);
-    return type == CellType::hexahedron || type == CellType::wedge ||
-           type == CellType::pyramid || type == CellType::lagrange_hexahedron;
+    return type == CellType::hexahedron || type == CellType::wedge || type == CellType::pyramid ||
+           type == CellType::lagrange_hexahedron;
   });
 }
 

@@ -8,12 +8,15 @@
 namespace tetray {
 namespace {
 
-// How far (relative to the edge or the face) a hanging node may lie from the exact middle: far
-// above float coordinates' rounding, far below any two distinct nodes of a mesh.
-constexpr double kPlaceTolerance = 1e-4;
+// How far (relative to the edge, or the face's diagonal) a hanging node may lie from the straight
+// middle: solvers place new vertices on curved boundaries and manifolds (deal.II does), off the
+// chord by several percent of the edge, and float coordinates far from the origin round by more
+// than 1e-4 of a small cell. What makes a node hanging is the mesh's structure (below); the
+// place only rules out a third point that is not between the ends.
+constexpr double kPlaceTolerance = 0.25;
 
-// Calls visit(nodes, faces) for every linear cell whose nodes name points of the mesh (the split
-// reports the others).
+// Calls visit(cell, nodes, faces) for every linear cell whose nodes name points of the mesh (the
+// split reports the others).
 template <typename Visit>
 void for_each_linear_cell(std::span<const std::uint8_t> types,
                           std::span<const std::int64_t> offsets,
@@ -37,7 +40,7 @@ void for_each_linear_cell(std::span<const std::uint8_t> types,
     for (const CellFace& face : faces) {
       for (int k = 0; k < face.count; ++k) highest = std::max(highest, face.at[k]);
     }
-    if (named && nodes.size() > static_cast<std::size_t>(highest)) visit(nodes, faces);
+    if (named && nodes.size() > static_cast<std::size_t>(highest)) visit(c, nodes, faces);
   }
 }
 
@@ -60,9 +63,10 @@ struct EdgeGraph {
 template <typename CellVisitor>
 EdgeGraph edge_graph(std::size_t points, CellVisitor for_each_cell) {
   const auto for_each_edge = [&](auto use) {
-    for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
-      for (const CellEdge& edge : edges_of(faces)) use(nodes[edge[0]], nodes[edge[1]]);
-    });
+    for_each_cell(
+        [&](std::size_t, std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+          for (const CellEdge& edge : edges_of(faces)) use(nodes[edge[0]], nodes[edge[1]]);
+        });
   };
   std::vector<std::int64_t> fill(points + 1, 0);
   for_each_edge([&](std::int64_t a, std::int64_t b) {
@@ -119,6 +123,50 @@ struct Positions {
   }
 };
 
+bool has_triangular_faces(std::span<const std::uint8_t> types) {
+  return std::any_of(types.begin(), types.end(), [](std::uint8_t t) {
+    const auto type = static_cast<CellType>(t);
+    return type == CellType::tetra || type == CellType::wedge || type == CellType::pyramid ||
+           type == CellType::lagrange_tetrahedron;
+  });
+}
+
+// Drops the candidates (a, b, m) that one cell holds all three of: a triangular face of a tet, a
+// wedge or a pyramid, however flat, is no finer neighbour's corner.
+template <typename Candidate, typename CellVisitor>
+void drop_triangles_of_one_cell(std::span<const std::int64_t> offsets,
+                                std::span<const std::int64_t> connectivity, std::size_t points,
+                                CellVisitor for_each_cell, std::vector<Candidate>& candidates) {
+  std::vector<std::uint8_t> wanted(points, 0);
+  for (const Candidate& c : candidates) wanted[static_cast<std::size_t>(c.a)] = 1;
+  // The cells around each end a (compressed rows).
+  std::vector<std::int64_t> start(points + 1, 0);
+  for_each_cell([&](std::size_t, std::span<const std::int64_t> nodes, std::span<const CellFace>) {
+    for (std::int64_t p : nodes) start[static_cast<std::size_t>(p) + 1] += wanted[p];
+  });
+  for (std::size_t p = 0; p < points; ++p) start[p + 1] += start[p];
+  std::vector<std::size_t> cells(static_cast<std::size_t>(start[points]));
+  std::vector<std::int64_t> next(start.begin(), start.end() - 1);
+  for_each_cell([&](std::size_t c, std::span<const std::int64_t> nodes, std::span<const CellFace>) {
+    for (std::int64_t p : nodes) {
+      if (wanted[p]) cells[static_cast<std::size_t>(next[static_cast<std::size_t>(p)]++)] = c;
+    }
+  });
+  const auto holds = [&](std::size_t c, std::int64_t p) {
+    const auto first = connectivity.begin() + offsets[c],
+               last = connectivity.begin() + offsets[c + 1];
+    return std::find(first, last, p) != last;
+  };
+  std::erase_if(candidates, [&](const Candidate& c) {
+    const auto a = static_cast<std::size_t>(c.a);
+    for (auto k = static_cast<std::size_t>(start[a]); k < static_cast<std::size_t>(start[a + 1]);
+         ++k) {
+      if (holds(cells[k], c.b) && holds(cells[k], c.mid)) return true;
+    }
+    return false;
+  });
+}
+
 }  // namespace
 
 HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
@@ -133,23 +181,34 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
   const EdgeGraph graph = edge_graph(points, for_each_cell);
   const Positions at{xyz};
 
-  // Midpoints: a third point joined to both ends of an edge, at its middle. The neighbours of a
-  // are stamped with a, then each neighbour b's neighbours are looked up in the stamps.
+  // Midpoints: a third point m joined to both ends of an edge (a, b), near its middle, where no
+  // cell holds all three (a triangular face has three such edges). Each edge is met once, from
+  // its end of larger degree, whose neighbours are stamped; the other end's are looked up in the
+  // stamps, so a point of many edges costs its degree, not its degree squared.
+  const auto degree = [&](std::int64_t p) { return graph.of(p).size(); };
+  const auto before = [&](std::int64_t p, std::int64_t q) {
+    return degree(p) < degree(q) || (degree(p) == degree(q) && p < q);
+  };
   std::vector<std::int64_t> stamp(points, -1);
   for (std::size_t p = 0; p < points; ++p) {
     const auto a = static_cast<std::int64_t>(p);
     for (std::int64_t q : graph.of(a)) stamp[static_cast<std::size_t>(q)] = a;
     for (std::int64_t b : graph.of(a)) {
-      if (b <= a) continue;
+      if (!before(b, a)) continue;
+      const double length = at.between(a, b);
+      if (length == 0) continue;  // a collapsed edge has no middle
       for (std::int64_t m : graph.of(b)) {
         if (stamp[static_cast<std::size_t>(m)] != a) continue;
-        // A triangle of edges: rare in a mesh without tets or triangular faces.
+        // A triangle of edges: rare in a mesh without triangular faces.
         const std::array<double, 3> middle = at.mean(std::array{a, b});
-        if (at.distance(m, middle) <= kPlaceTolerance * at.between(a, b)) {
-          out.midpoints_.push_back({a, b, m});
+        if (at.distance(m, middle) <= kPlaceTolerance * length) {
+          out.midpoints_.push_back({std::min(a, b), std::max(a, b), m});
         }
       }
     }
+  }
+  if (!out.midpoints_.empty() && has_triangular_faces(types)) {
+    drop_triangles_of_one_cell(offsets, connectivity, points, for_each_cell, out.midpoints_);
   }
   std::sort(out.midpoints_.begin(), out.midpoints_.end(), [](const Midpoint& x, const Midpoint& y) {
     return std::pair{x.a, x.b} < std::pair{y.a, y.b};
@@ -162,29 +221,30 @@ HangingNodes HangingNodes::find(std::span<const std::uint8_t> types,
   }
 
   // Centres: a point joined to the midpoints of a quadrilateral's four edges, at its mean.
-  for_each_cell([&](std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
-    for (const CellFace& face : faces) {
-      if (face.count != 4) continue;
-      std::array<std::int64_t, 4> corners{}, mids{};
-      for (int k = 0; k < 4; ++k) corners[k] = nodes[face.at[k]];
-      if (!std::all_of(corners.begin(), corners.end(),
-                       [&](std::int64_t p) { return out.ends_hanging_edge(p); })) {
-        continue;
-      }
-      for (int k = 0; k < 4; ++k) mids[k] = out.midpoint(corners[k], corners[(k + 1) % 4]);
-      if (std::any_of(mids.begin(), mids.end(), [](std::int64_t m) { return m < 0; })) continue;
-      const std::array<double, 3> mean = at.mean(corners);
-      const double tolerance = kPlaceTolerance * at.between(corners[0], corners[2]);
-      for (std::int64_t c : graph.of(mids[0])) {
-        const bool joined = std::all_of(mids.begin() + 1, mids.end(),
-                                        [&](std::int64_t m) { return graph.joined(m, c); });
-        if (!joined || at.distance(c, mean) > tolerance) continue;
-        std::sort(corners.begin(), corners.end());
-        out.centres_.push_back({corners, c});
-        break;
-      }
-    }
-  });
+  for_each_cell(
+      [&](std::size_t, std::span<const std::int64_t> nodes, std::span<const CellFace> faces) {
+        for (const CellFace& face : faces) {
+          if (face.count != 4) continue;
+          std::array<std::int64_t, 4> corners{}, mids{};
+          for (int k = 0; k < 4; ++k) corners[k] = nodes[face.at[k]];
+          if (!std::all_of(corners.begin(), corners.end(),
+                           [&](std::int64_t p) { return out.ends_hanging_edge(p); })) {
+            continue;
+          }
+          for (int k = 0; k < 4; ++k) mids[k] = out.midpoint(corners[k], corners[(k + 1) % 4]);
+          if (std::any_of(mids.begin(), mids.end(), [](std::int64_t m) { return m < 0; })) continue;
+          const std::array<double, 3> mean = at.mean(corners);
+          const double tolerance = kPlaceTolerance * at.between(corners[0], corners[2]);
+          for (std::int64_t c : graph.of(mids[0])) {
+            const bool joined = std::all_of(mids.begin() + 1, mids.end(),
+                                            [&](std::int64_t m) { return graph.joined(m, c); });
+            if (!joined || at.distance(c, mean) > tolerance) continue;
+            std::sort(corners.begin(), corners.end());
+            out.centres_.push_back({corners, c});
+            break;
+          }
+        }
+      });
   const auto by_corners = [](const Centre& x, const Centre& y) { return x.corners < y.corners; };
   std::sort(out.centres_.begin(), out.centres_.end(), by_corners);
   out.centres_.erase(

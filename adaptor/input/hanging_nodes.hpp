@@ -8,11 +8,15 @@
 // coarse cell's tets at these nodes instead, so both sides cut the face into the same triangles.
 //
 // A point m is the hanging midpoint of an edge (a, b) of a linear cell when a-m, m-b and a-b are
-// all edges of cells and m lies at the middle of a-b (within 1e-6 of the edge's length). A point c
-// is the hanging centre of a quadrilateral face when the face's four edges have hanging midpoints,
-// c is an edge's end of all four, and c lies at the mean of the face's corners. Quadratic cells
-// take no part. A rank finds the hanging nodes of its cells when it holds their finer neighbours,
-// as a solver's ghost layer gives (deal.II's ghost cells are every cell sharing a vertex with the
+// all edges of cells, no cell holds all three points, and m lies near the middle of a-b (within a
+// quarter of the edge's length: solvers place new vertices on curved boundaries, off the chord). A
+// point c is the hanging centre of a quadrilateral face when the face's four edges have hanging
+// midpoints, c is an edge's end of all four, and c lies near the mean of the face's corners. The
+// points must be shared by the cells that meet there (a solver's vertices, not a copy per cell).
+// Only quadrilateral faces and edges are made conforming: a triangular face against four finer
+// triangles (a tet refined into eight) cannot be matched by bisection alone. Quadratic cells take
+// no part. A rank finds the hanging nodes of its cells when it holds their finer neighbours, as a
+// solver's ghost layer gives (deal.II's ghost cells are every cell sharing a vertex with the
 // rank's own). One level of refinement across an edge is resolved (deal.II's 2:1 balance).
 #pragma once
 

@@ -54,9 +54,12 @@ bool on_boundary(const CellMesh& m, const std::array<std::int64_t, 3>& face) {
 }
 
 // Splits `m` under `keys` and checks the tets fill it without gaps, overlaps or cracks.
+// xyz places the points for the hanging-node search (the lattice's own positions by default);
+// volumes and the boundary are checked on the lattice.
 void expect_conforming_split(const CellMesh& m, const std::vector<std::uint64_t>& keys,
-                             const char* label) {
-  const SplitCells split = split_cells(m.types, m.offsets, m.connectivity, keys, m.xyz(0, m.n));
+                             const char* label, const std::vector<double>& xyz = {}) {
+  const SplitCells split =
+      split_cells(m.types, m.offsets, m.connectivity, keys, xyz.empty() ? m.xyz(0, m.n) : xyz);
   ASSERT_EQ(split.error, "") << label;
   ASSERT_EQ(split.tet_cell.size() * 4, split.tets.size()) << label;
   double total = 0;
@@ -167,6 +170,36 @@ TEST(CellSplit, HangingNodesSplitAlikeUnderAnyNumberingOfThePoints) {
       EXPECT_EQ(tets_by_cell(split, original), reference) << kind.name << ", seed " << seed;
     }
   }
+}
+
+// Solvers place new vertices on curved boundaries and manifolds, off the straight edge, and float
+// coordinates far from the origin round by more than a small cell's 1e-4: the hanging nodes are
+// found all the same, and the split conforms.
+TEST(CellSplit, FindsHangingNodesOffTheChordAndFarFromTheOrigin) {
+  const CellMesh m = lattice(4, testing::hexahedra_refined_in_half);
+  std::vector<double> curved = m.xyz(0, m.n), far = curved;
+  for (std::size_t p = 0; p < curved.size(); p += 3) {
+    curved[p] += 0.05 * std::sin(3 * curved[p + 1]);  // 15% of a coarse edge at most
+    for (int k = 0; k < 3; ++k) far[p + k] = static_cast<float>(far[p + k] / 4 + 1000);
+  }
+  for (const auto& [xyz, label] : {std::pair{curved, "curved"}, std::pair{far, "far, in float"}}) {
+    const std::vector<std::uint64_t> keys = shuffled_keys(m.points.size(), 7);
+    const SplitCells split = split_cells(m.types, m.offsets, m.connectivity, keys, xyz);
+    EXPECT_EQ(split.hanging_centres, 16u) << label;
+    EXPECT_EQ(split.hanging_midpoints, 40u) << label;
+    expect_conforming_split(m, keys, label, xyz);
+  }
+}
+
+// A wedge whose top triangle has collapsed to one position (three distinct points there): its
+// edges of no length have no middle, and it splits into its three tets, nothing bisected.
+TEST(CellSplit, ACollapsedCellHasNoHangingNodes) {
+  const std::vector<std::uint8_t> types = {13};
+  const std::vector<std::int64_t> offsets = {0, 6}, nodes = {0, 1, 2, 3, 4, 5};
+  const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const SplitCells split = split_cells(types, offsets, nodes, shuffled_keys(6, 2), xyz);
+  EXPECT_EQ(split.hanging_midpoints, 0u);
+  EXPECT_EQ(split.tet_cell.size(), 3u);
 }
 
 // A rank holding some of the cells splits each as the whole mesh does.
