@@ -4,9 +4,7 @@
 #include <cmath>
 #include <string_view>
 
-namespace {
-
-constexpr const char* usage =
+const char* const example_usage =
     "usage: dealii_heat_insitu [--config FILE] [--steps N] [--dt DT] [--refine-every N]\n"
     "                          [--max-level N] [--source-width W] [--without-ghost-flags]\n"
     "  --config FILE      tetray's config (default: heat_insitu.yaml beside the sources)\n"
@@ -16,6 +14,8 @@ constexpr const char* usage =
     "  --max-level N      finest refinement level, 3..8 (default 5)\n"
     "  --source-width W   the Gaussian source's standard deviation, > 0 (default 0.08)\n"
     "  --without-ghost-flags  pass deal.II's ghost cells unflagged: each is drawn twice\n";
+
+namespace {
 
 bool read_number(std::string_view text, unsigned int& value) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -40,15 +40,19 @@ std::optional<ExampleOptions> parse_options(int argc, char** argv, std::string& 
   for (int i = 1; i < argc; ++i) {
     const std::string_view name = argv[i];
     if (name == "--help" || name == "-h") {
-      error = usage;
-      return std::nullopt;
+      options.help = true;
+      return options;
     }
     if (name == "--without-ghost-flags") {
       options.ghost_flags = false;
       continue;
     }
-    if (i + 1 >= argc) {
-      error = std::string(name) + ": unknown option or missing value\n" + usage;
+    const bool known = name == "--config" || name == "--steps" || name == "--dt" ||
+                       name == "--refine-every" || name == "--max-level" ||
+                       name == "--source-width";
+    if (!known || i + 1 >= argc) {
+      error =
+          std::string(name) + (known ? ": missing value\n" : ": unknown option\n") + example_usage;
       return std::nullopt;
     }
     const std::string_view value = argv[++i];
@@ -64,14 +68,11 @@ std::optional<ExampleOptions> parse_options(int argc, char** argv, std::string& 
     } else if (name == "--max-level") {
       good = read_number(value, heat.max_level) && heat.max_level >= heat.initial_refinement &&
              heat.max_level <= 8;
-    } else if (name == "--source-width") {
+    } else {  // --source-width
       good = read_number(value, heat.source_width) && heat.source_width > 0;
-    } else {
-      error = std::string(name) + ": unknown option\n" + usage;
-      return std::nullopt;
     }
     if (!good) {
-      error = std::string(name) + ": bad value '" + std::string(value) + "'\n" + usage;
+      error = std::string(name) + ": bad value '" + std::string(value) + "'\n" + example_usage;
       return std::nullopt;
     }
   }

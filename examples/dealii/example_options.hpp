@@ -11,7 +11,10 @@ struct ExampleOptions {
   HeatParameters heat;
   // Leave the ghost cells unflagged (to see what the flags do: each is then drawn twice).
   bool ghost_flags = true;
+  bool help = false;  // --help: print `usage` and stop
 };
 
-// The options, or nullopt with `error` saying which argument is wrong (or the usage, for --help).
+extern const char* const example_usage;
+
+// The options, or nullopt with `error` saying which argument is wrong, followed by the usage.
 std::optional<ExampleOptions> parse_options(int argc, char** argv, std::string& error);

@@ -22,6 +22,16 @@ std::uint64_t HeatProblem::global_cells() const {
   return state_->triangulation.n_global_active_cells();
 }
 
+std::uint64_t HeatProblem::hanging_nodes() const {
+  std::uint64_t local = 0;
+  for (const auto dof : state_->owned) {
+    // A boundary DoF's line is u = 0, with no entries; a hanging node's names its masters.
+    const auto* entries = state_->constraints.get_constraint_entries(dof);
+    local += entries != nullptr && !entries->empty();
+  }
+  return dealii::Utilities::MPI::sum(local, state_->comm);
+}
+
 double HeatProblem::max_temperature() const {
   double local = 0.0;  // the temperature is >= 0
   for (const auto dof : state_->owned) local = std::max(local, double(state_->solution[dof]));

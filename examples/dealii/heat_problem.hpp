@@ -37,7 +37,10 @@ class HeatProblem {
   void export_temperature(LocalHexMesh& mesh) const;
 
   std::uint64_t global_cells() const;  // active cells over all ranks
-  double max_temperature() const;      // over all ranks
+  // The vertices whose value the hanging-node constraints set (at the midpoint of a coarser
+  // cell's edge or the centre of its face), over all ranks.
+  std::uint64_t hanging_nodes() const;
+  double max_temperature() const;  // over all ranks
 
  private:
   HeatParameters parameters_;

@@ -88,10 +88,11 @@ int run(MPI_Comm comm, const ExampleOptions& options) {
 
     const double peak = problem.max_temperature();
     const auto cells = static_cast<unsigned long long>(problem.global_cells());
+    const auto hanging = static_cast<unsigned long long>(problem.hanging_nodes());
     if (rank == 0) {
-      std::printf("step %3u t=%.3f cells %6llu%s max u %.4f cg %3u solver %7.2f ms", step, time,
-                  cells, adapted ? " (adapted)" : "          ", peak, iterations,
-                  1e3 * solver_seconds);
+      std::printf("step %3u t=%.3f cells %5llu%s hanging %4llu max u %.4f cg %2u solver %6.2f ms",
+                  step, time, cells, adapted ? " (adapted)" : "          ", hanging, peak,
+                  iterations, 1e3 * solver_seconds);
       if (report.rendered) {
         std::printf(" | views %5.2f ms, tetray %7.2f ms (%s)", 1e3 * views_seconds,
                     1e3 * report.seconds_blocked, report.bvh_decision.c_str());
@@ -138,6 +139,10 @@ int main(int argc, char** argv) {
   if (!options) {
     if (rank == 0) std::fprintf(stderr, "%s", error.c_str());
     return 2;
+  }
+  if (options->help) {
+    if (rank == 0) std::printf("%s", example_usage);
+    return 0;
   }
   try {
     return run(MPI_COMM_WORLD, *options);
