@@ -58,21 +58,28 @@ ProtocolStatus shadow_layers(FragmentImage& merged, const std::vector<FragmentIm
 
 }  // namespace
 
-ProtocolStatus composite_layers(const LayerImage& local, const ShadowScene& scene, int writer,
+ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
                                 MPI_Comm comm, Framebuffer& image) {
   CommPlace place;
   if (const int rc = place_in(comm, place); rc != MPI_SUCCESS)
     return mpi_failure("layers: the rank's place", rc);
+  // Alone, the rank's layers are already the kept ones (at most max_layers per pixel, which
+  // flatten_layers orders as the merge would): they are blended where they are, with no copy.
+  const bool alone = place.size == 1;
   const auto max_layers = static_cast<std::size_t>(scene.options.max_layers);
-  FragmentImage merged;
-  if (const int rc = gather_fragments(local.color, comm, writer, max_layers, merged);
-      rc != MPI_SUCCESS)
-    return mpi_failure("compositing the layers", rc);
-  std::vector<FragmentImage> terms(local.shadow_terms.size());
-  for (std::size_t j = 0; j < terms.size(); ++j) {
-    // The same depths, keys and alphas as the colors: each pixel keeps the same fragments.
-    const int rc = gather_fragments(local.shadow_terms[j], comm, writer, max_layers, terms[j]);
-    if (rc != MPI_SUCCESS) return mpi_failure("compositing a shadowing light's layers", rc);
+  FragmentImage gathered;
+  std::vector<FragmentImage> gathered_terms(alone ? 0 : local.shadow_terms.size());
+  FragmentImage& merged = alone ? local.color : gathered;
+  std::vector<FragmentImage>& terms = alone ? local.shadow_terms : gathered_terms;
+  if (!alone) {
+    if (const int rc = gather_fragments(local.color, comm, writer, max_layers, gathered);
+        rc != MPI_SUCCESS)
+      return mpi_failure("compositing the layers", rc);
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      // The same depths, keys and alphas as the colors: each pixel keeps the same fragments.
+      const int rc = gather_fragments(local.shadow_terms[j], comm, writer, max_layers, terms[j]);
+      if (rc != MPI_SUCCESS) return mpi_failure("compositing a shadowing light's layers", rc);
+    }
   }
   ProtocolStatus shadowed = ProtocolStatus::success();
   if (!terms.empty()) {

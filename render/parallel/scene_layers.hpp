@@ -19,9 +19,11 @@ namespace tetray::render {
 
 // Collective over `comm`. `local` is this rank's layers (trace_layers with scene.options). On
 // return the writer's `image` is the blended image, with the first layer's view depth and key.
-// A rank whose shadow rays failed (memory) still takes part in every collective, with no
-// occlusion, and returns a local error afterwards.
-ProtocolStatus composite_layers(const LayerImage& local, const ShadowScene& scene, int writer,
+// A rank alone in `comm` blends its own layers where they are, with no gather: `local` is then
+// left with each pixel's fragments in depth order and its shadowed colors. A rank whose shadow
+// rays failed (memory) still takes part in every collective, with no occlusion, and returns a
+// local error afterwards.
+ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
                                 MPI_Comm comm, Framebuffer& image);
 
 }  // namespace tetray::render
