@@ -2,8 +2,10 @@
 // fragments of every pixel are gathered on the root, which merges each pixel's layers in depth
 // order with the one tie rule and the over operator. Volume runs of the walk and transparent
 // surface hits (zero-length fragments) go through the same merge, so a scene of both composites
-// in one pass. The gather moves every fragment once to the root (docs/architecture.md §8 names
-// the cost); an image-space split of the pixels (direct send) is the step beyond it.
+// in one pass. The gather moves every fragment once to the root, with each rank's counts over
+// its run of covered pixels only; the root sorts only the pixels several ranks cover
+// (docs/architecture.md §8 names the cost); an image-space split of the pixels (direct send) is
+// the step beyond it.
 #pragma once
 
 #include <mpi.h>
