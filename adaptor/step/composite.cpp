@@ -97,7 +97,8 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   if (comm_.size > 1) {
     const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
     const int rc = s.config.volume
-                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image)
+                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image,
+                                                     nullptr, &s.merged_fragments[v])
                        : render::composite(image, comm_.comm,
                                            {.root = writer, .active_hint = active_hint(s, k, v)},
                                            nullptr, &composite_workspace_);
@@ -130,7 +131,7 @@ Status Adaptor::Impl::composite_layered_view(SceneState& s, std::size_t k, std::
   const render::ShadowScene scene{volume.volume(), volume.bvh(), camera, s.config.surfaces,
                                   options};
   Status st = to_status(render::composite_layers(s.layers[v], scene, config_.output.writer_rank,
-                                                 comm_.comm, s.images[v]));
+                                                 comm_.comm, s.images[v], s.merged_layers[v]));
   if (st.code == StatusCode::mpi_error) {
     return {StatusCode::mpi_error, "compositing scene '" + s.config.name + "': " + st.message};
   }

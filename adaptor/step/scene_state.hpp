@@ -14,6 +14,7 @@
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/parallel/global_reduce.hpp"
+#include "render/parallel/scene_layers.hpp"
 #include "render/scene/colormap.hpp"
 #include "render/trace/trace.hpp"
 
@@ -42,10 +43,14 @@ struct SceneState {
   std::vector<ViewTimes> view_times;           // per view, zeroed at each due step
   std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
                                                        // compositing
+  // Per view, the writer's merged fragments: a volume scene's, a transparent scene's layers;
+  // kept from frame to frame so that their storage is reused.
+  std::vector<render::VolumeFragmentImage> merged_fragments;
   // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).
   std::vector<std::vector<render::Framebuffer>> shadow_terms;
   // Per view, a transparent scene's (render/parallel/scene_layers.hpp).
   std::vector<render::LayerImage> layers;
+  std::vector<render::MergedLayers> merged_layers;
   StepRecord record;
   // A clip cap (render/walk/clip_cap.hpp); the colormap is null without one.
   const render::Colormap* cap_colormap = nullptr;

@@ -33,6 +33,7 @@ void Adaptor::Impl::trace_surface_scene(SceneState& s, std::size_t k,
   s.shadow_terms.resize(s.views.size());
   const bool transparent = render::has_transparency(s.config.surfaces);
   s.layers.resize(transparent ? s.views.size() : 0);
+  s.merged_layers.resize(s.layers.size());
   for (std::size_t v = 0; v < s.views.size(); ++v) trace_surface_view(s, k, v, options);
 }
 

@@ -46,15 +46,14 @@ bool already_kept(std::span<const F> layers, std::size_t max_layers) {
 // The root's merge: pixel by pixel, every rank's fragments of that pixel together, of which
 // the pixel keeps its nearest (kept_layers). Only pixels that several ranks cover are sorted.
 template <typename F>
-BasicFragmentImage<F> merge_ranks(const BasicFragmentImage<F>& shape,
-                                  const std::vector<CountRun>& runs,
-                                  const std::vector<int>& offsets, const std::vector<F>& all,
-                                  std::size_t max_layers) {
+void merge_ranks(const BasicFragmentImage<F>& shape, const std::vector<CountRun>& runs,
+                 const std::vector<int>& offsets, const std::vector<F>& all, std::size_t max_layers,
+                 BasicFragmentImage<F>& out) {
   const std::size_t pixels = shape.pixel_count(), ranks = runs.size();
-  BasicFragmentImage<F> out;
   out.width = shape.width;
   out.height = shape.height;
-  out.begin.assign(pixels + 1, 0);
+  out.begin.assign(pixels + 1, 0);  // out's storage is reused: no new pages for a new frame
+  out.fragments.clear();
   out.fragments.reserve(all.size());
   std::vector<std::size_t> cursor(ranks);
   std::size_t from = pixels, to = 0;  // the pixels any rank covers
@@ -98,7 +97,6 @@ BasicFragmentImage<F> merge_ranks(const BasicFragmentImage<F>& shape,
   }
   const auto total = static_cast<std::uint32_t>(out.fragments.size());
   for (std::size_t p = std::max(from, to); p <= pixels; ++p) out.begin[p] = total;
-  return out;
 }
 
 // The total of `sizes` as int offsets, or false when it does not fit one int count.
@@ -161,19 +159,21 @@ int gather_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root
                std::span<const std::uint32_t>(counts).subspan(
                    static_cast<std::size_t>(run_offsets[r]), run_lengths[r])};
   }
-  merged = merge_ranks(local, runs, offsets, all, max_layers);
+  merge_ranks(local, runs, offsets, all, max_layers, merged);
   if (stats != nullptr) *stats = {all.size(), total};
   return MPI_SUCCESS;
 }
 
 template <typename F>
 int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
-                        Framebuffer& out, FragmentCompositeStats* stats) {
+                        Framebuffer& out, FragmentCompositeStats* stats,
+                        BasicFragmentImage<F>* merged) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  BasicFragmentImage<F> merged;
-  const int rc = gather_fragments(local, comm, root, kAllLayers, merged, stats);
-  if (rc == MPI_SUCCESS && rank == root) out = resolve(merged);
+  BasicFragmentImage<F> fresh;
+  BasicFragmentImage<F>& kept = merged != nullptr ? *merged : fresh;
+  const int rc = gather_fragments(local, comm, root, kAllLayers, kept, stats);
+  if (rc == MPI_SUCCESS && rank == root) out = resolve(kept);
   return rc;
 }
 

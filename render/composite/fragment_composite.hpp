@@ -32,17 +32,21 @@ int gather_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root
 
 // Collective over `comm`: on `root`, `out` becomes the merged image of all ranks' fragments
 // (the same size on every rank); elsewhere it is left alone. Returns MPI_SUCCESS or the MPI
-// error code (MPI_ERR_COUNT when the gathered fragments would not fit one MPI count).
+// error code (MPI_ERR_COUNT when the gathered fragments would not fit one MPI count). `merged`,
+// when given, holds the merged fragments: a caller that keeps it from frame to frame reuses its
+// storage.
 template <typename F>
 int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
-                        Framebuffer& out, FragmentCompositeStats* stats = nullptr);
+                        Framebuffer& out, FragmentCompositeStats* stats = nullptr,
+                        BasicFragmentImage<F>* merged = nullptr);
 
 #define TETRAY_FRAGMENT_COMPOSITE(EXTERN, F)                                              \
   EXTERN template int gather_fragments<F>(const BasicFragmentImage<F>&, MPI_Comm, int,    \
                                           std::size_t, BasicFragmentImage<F>&,            \
                                           FragmentCompositeStats*);                       \
   EXTERN template int composite_fragments<F>(const BasicFragmentImage<F>&, MPI_Comm, int, \
-                                             Framebuffer&, FragmentCompositeStats*);
+                                             Framebuffer&, FragmentCompositeStats*,       \
+                                             BasicFragmentImage<F>*);
 TETRAY_FRAGMENT_COMPOSITE(extern, Fragment)
 TETRAY_FRAGMENT_COMPOSITE(extern, VolumeFragment)
 

@@ -59,7 +59,7 @@ ProtocolStatus shadow_layers(FragmentImage& merged, const std::vector<FragmentIm
 }  // namespace
 
 ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
-                                MPI_Comm comm, Framebuffer& image) {
+                                MPI_Comm comm, Framebuffer& image, MergedLayers& kept) {
   CommPlace place;
   if (const int rc = place_in(comm, place); rc != MPI_SUCCESS)
     return mpi_failure("layers: the rank's place", rc);
@@ -67,12 +67,11 @@ ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int
   // flatten_layers orders as the merge would): they are blended where they are, with no copy.
   const bool alone = place.size == 1;
   const auto max_layers = static_cast<std::size_t>(scene.options.max_layers);
-  FragmentImage gathered;
-  std::vector<FragmentImage> gathered_terms(alone ? 0 : local.shadow_terms.size());
-  FragmentImage& merged = alone ? local.color : gathered;
-  std::vector<FragmentImage>& terms = alone ? local.shadow_terms : gathered_terms;
+  kept.shadow_terms.resize(alone ? 0 : local.shadow_terms.size());
+  FragmentImage& merged = alone ? local.color : kept.color;
+  std::vector<FragmentImage>& terms = alone ? local.shadow_terms : kept.shadow_terms;
   if (!alone) {
-    if (const int rc = gather_fragments(local.color, comm, writer, max_layers, gathered);
+    if (const int rc = gather_fragments(local.color, comm, writer, max_layers, kept.color);
         rc != MPI_SUCCESS)
       return mpi_failure("compositing the layers", rc);
     for (std::size_t j = 0; j < terms.size(); ++j) {

@@ -10,6 +10,8 @@
 
 #include <mpi.h>
 
+#include <vector>
+
 #include "render/core/framebuffer.hpp"
 #include "render/parallel/protocol_status.hpp"
 #include "render/parallel/scene_shadows.hpp"
@@ -23,7 +25,14 @@ namespace tetray::render {
 // left with each pixel's fragments in depth order and its shadowed colors. A rank whose shadow
 // rays failed (memory) still takes part in every collective, with no occlusion, and returns a
 // local error afterwards.
+// The writer's merged layers of a view, kept by the caller from frame to frame so that their
+// storage is reused (a fresh image of fragments each frame cost its page faults).
+struct MergedLayers {
+  FragmentImage color;
+  std::vector<FragmentImage> shadow_terms;
+};
+
 ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
-                                MPI_Comm comm, Framebuffer& image);
+                                MPI_Comm comm, Framebuffer& image, MergedLayers& merged);
 
 }  // namespace tetray::render
