@@ -4,12 +4,8 @@
 # its RUNPATH).
 #   cmake -DBUILD_DIR=... -DWORK_DIR=... -DPACKAGE_DIR=<relative to the prefix> -DPYTHON=...
 #         -DTEST_DIR=... -P install_test.cmake
-execute_process(COMMAND ${CMAKE_COMMAND} -E rm -rf ${WORK_DIR})
-execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}
-  RESULT_VARIABLE failed OUTPUT_QUIET)
-if(failed)
-  message(FATAL_ERROR "cmake --install failed")
-endif()
+set(PREFIX ${WORK_DIR})
+include(${CMAKE_CURRENT_LIST_DIR}/../examples/install_prefix.cmake)
 set(site ${WORK_DIR}/${PACKAGE_DIR})
 set(bare env -i PATH=/usr/bin:/bin HOME=${WORK_DIR} PYTHONPATH=${site}:${TEST_DIR}
   PYTHONDONTWRITEBYTECODE=1)
