@@ -46,12 +46,16 @@ SplitMesh split_mesh(const testing::CellKind& kind, bool use_hanging_nodes = tru
   return mesh;
 }
 
+// The sphere level set of `kind`'s mesh, split with or without its hanging nodes, checked for
+// pinholes from random cameras.
+void expect_watertight(const testing::CellKind& kind, bool use_hanging_nodes = true) {
+  const SplitMesh mesh = split_mesh(kind, use_hanging_nodes);
+  const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
+  expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
+}
+
 TEST(SplitCells, SphereLevelSetIsWatertight) {
-  for (const testing::CellKind& kind : testing::kCellKinds) {
-    const SplitMesh mesh = split_mesh(kind);
-    const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
-    expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
-  }
+  for (const testing::CellKind& kind : testing::kCellKinds) expect_watertight(kind);
 }
 
 TEST(SplitCells, ImagesAgreeWithTheReference) {
@@ -74,22 +78,16 @@ TEST(SplitCells, ImagesAgreeWithTheReference) {
 // refinement interfaces. The same split without the hanging nodes leaves cracks there, which the
 // same check finds: it can fail.
 TEST(SplitCells, LevelSetIsWatertightAcrossRefinementInterfaces) {
-  for (const testing::CellKind& kind : testing::kHangingKinds) {
-    const SplitMesh mesh = split_mesh(kind);
-    const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
-    expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
-  }
+  for (const testing::CellKind& kind : testing::kHangingKinds) expect_watertight(kind);
 }
 
 TEST(SplitCells, IgnoringTheHangingNodesCracksTheSurface) {
   for (const testing::CellKind& kind : testing::kHangingKinds) {
-    const SplitMesh mesh = split_mesh(kind, false);
-    const RenderScene scene = load_scene(mesh.points, mesh.tets, mesh.field);
     ::testing::TestPartResultArray failures;
     {
       const ::testing::ScopedFakeTestPartResultReporter capture(
           ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
-      expect_sphere_watertight(scene, kCenter, kIso, 12, 100'000u / kSanitizerSlowdown, kind.name);
+      expect_watertight(kind, false);
     }
     int pinholes = 0;
     for (int k = 0; k < failures.size(); ++k) {
