@@ -41,7 +41,8 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
-bool write_json(const std::string& path, const std::vector<Row>& rows, const MachineCosts& c) {
+bool write_json(const std::string& path, const std::vector<Row>& rows, const MachineCosts& c,
+                const std::vector<FragmentRow>& fragments) {
   using bench::number;
   Json::Value json;
   json["latency_us"] = number(c.latency_s * 1e6);
@@ -72,6 +73,20 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     run["message_bytes_per_pixel"] = number(r.message_bytes_per_pixel);
     if (!r.model) run["root_image_hash"] = hex(r.root_image_hash);
     json["runs"].append(run);
+  }
+  json["fragments"] = Json::Value(Json::arrayValue);
+  for (const FragmentRow& r : fragments) {
+    Json::Value row;
+    row["ranks"] = r.ranks;
+    row["size"] = r.size;
+    row["mode"] = r.coverage;
+    row["opaque_ms"] = number(r.opaque_ms);
+    row["fragments_ms"] = number(r.fragments_ms);
+    row["fragments_per_rank"] = number(r.fragments_per_rank);
+    row["ratio"] = number(r.ratio());
+    row["target_ratio"] = number(kFragmentTargetRatio);
+    row["target_met"] = r.ratio() <= kFragmentTargetRatio;
+    json["fragments"].append(row);
   }
   return bench::write_json_file(json, path);
 }

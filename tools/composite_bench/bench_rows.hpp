@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/composite_bench/fragment_rows.hpp"
 #include "tools/composite_bench/machine_costs.hpp"
 
 namespace tetray::composite_bench {
@@ -33,6 +34,7 @@ struct Row {
 
 void print_costs(const MachineCosts& costs);
 void print_rows(const std::vector<Row>& rows);
-bool write_json(const std::string& path, const std::vector<Row>& rows, const MachineCosts& costs);
+bool write_json(const std::string& path, const std::vector<Row>& rows, const MachineCosts& costs,
+                const std::vector<FragmentRow>& fragments);
 
 }  // namespace tetray::composite_bench

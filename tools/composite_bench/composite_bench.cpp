@@ -30,6 +30,7 @@
 #include "render/composite/compositor.hpp"
 #include "tools/composite_bench/bench_images.hpp"
 #include "tools/composite_bench/bench_rows.hpp"
+#include "tools/composite_bench/fragment_rows.hpp"
 #include "tools/composite_bench/machine_costs.hpp"
 #include "tools/composite_bench/model_image.hpp"
 
@@ -53,6 +54,7 @@ struct BenchOptions {
   int byte_scale = 1;
   std::vector<double> costs_ns;  // scan, encode, composite[, copy]; measured when empty
   int cost_size = 1024;
+  bool fragments = true;  // the transparent rows (fragment_rows.hpp), with real images only
   std::string json;
 };
 
@@ -212,6 +214,7 @@ int run(const BenchOptions& options) {
   }
   const ModelSettings settings{costs.pixel, options.byte_scale};
   std::vector<Row> rows;
+  std::vector<FragmentRow> fragment_rows;
   for (int ranks : options.rank_counts) {
     if (ranks > world_size) continue;
     // The whole job as it is where it is measured whole (the simulator runs one count per job):
@@ -223,6 +226,11 @@ int run(const BenchOptions& options) {
     if (comm != MPI_COMM_NULL) {
       const std::vector<Row> measured = measure_rank_count(ranks, options, settings, comm);
       rows.insert(rows.end(), measured.begin(), measured.end());
+      if (options.fragments && !options.model) {
+        const std::vector<FragmentRow> transparent =
+            measure_fragments(options.sizes, options.coverages, options.repeat, comm);
+        fragment_rows.insert(fragment_rows.end(), transparent.begin(), transparent.end());
+      }
       if (comm != MPI_COMM_WORLD) MPI_Comm_free(&comm);
     }
     sleeping_barrier(MPI_COMM_WORLD);
@@ -230,7 +238,8 @@ int run(const BenchOptions& options) {
   if (rank != 0) return 0;
   print_costs(costs);
   print_rows(rows);
-  if (!options.json.empty() && !write_json(options.json, rows, costs)) {
+  print_fragment_rows(fragment_rows);
+  if (!options.json.empty() && !write_json(options.json, rows, costs, fragment_rows)) {
     std::fprintf(stderr, "tetray-composite-bench: cannot write %s\n", options.json.c_str());
     return 1;
   }
@@ -270,6 +279,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--cost-size", options.cost_size, "image size at which to measure the costs")
       ->check(CLI::Range(16, 8192));
+  app.add_flag("--fragments,!--no-fragments", options.fragments,
+               "also composite each image as transparent layers (fragments) against opaque "
+               "(default; not with --model)");
   app.add_option("--json", options.json, "also write the figures to this JSON file");
   int status = 0;
   try {
