@@ -169,15 +169,27 @@ class Splitter {
       if (centre >= 0) bisect(f[0], f[2], centre);
     }
     midpoints_.clear();
-    for (const CellEdge& edge : edges_of(faces)) {
-      const std::int64_t a = nodes[edge[0]], b = nodes[edge[1]];
-      if (!hanging_.ends_hanging_edge(a) || !hanging_.ends_hanging_edge(b)) continue;
-      const std::int64_t mid = hanging_.midpoint(a, b);
-      if (mid >= 0) midpoints_.push_back({mid, a, b});
+    for (const CellEdge& edge : edges_of(faces)) add_midpoint(nodes[edge[0]], nodes[edge[1]]);
+    // Round by round: the edges' midpoints, then those of the halves (a finer cell two levels
+    // down across an edge hangs a node at a quarter of it), each round in the points' order.
+    for (int round = 0; round < kMostRounds && !midpoints_.empty(); ++round) {
+      std::sort(midpoints_.begin(), midpoints_.end(),
+                [&](const auto& x, const auto& y) { return smaller(x[0], y[0]); });
+      std::swap(midpoints_, round_);
+      midpoints_.clear();
+      for (const auto& [mid, a, b] : round_) {
+        bisect(a, b, mid);
+        add_midpoint(a, mid);
+        add_midpoint(mid, b);
+      }
     }
-    std::sort(midpoints_.begin(), midpoints_.end(),
-              [&](const auto& x, const auto& y) { return smaller(x[0], y[0]); });
-    for (const auto& [mid, a, b] : midpoints_) bisect(a, b, mid);
+  }
+
+  // Adds the hanging midpoint of edge (a, b), if it has one, to this round's list.
+  void add_midpoint(std::int64_t a, std::int64_t b) {
+    if (!hanging_.ends_hanging_edge(a) || !hanging_.ends_hanging_edge(b)) return;
+    const std::int64_t mid = hanging_.midpoint(a, b);
+    if (mid >= 0) midpoints_.push_back({mid, a, b});
   }
 
   // Replaces every tet of the cell that has the edge (a, b) by its two halves at `mid`.
@@ -223,6 +235,9 @@ class Splitter {
   std::uint64_t cell_ = 0;
   std::vector<std::array<std::int64_t, 4>> cell_tets_;  // the tets of the cell being split
   std::vector<std::array<std::int64_t, 3>> midpoints_;  // (midpoint, a, b) of its edges
+  std::vector<std::array<std::int64_t, 3>> round_;      // the round being bisected
+  // Levels of refinement across an edge that a cell's bisection follows (a quarter, an eighth..).
+  static constexpr int kMostRounds = 8;
 };
 
 std::string cell_text(std::size_t cell, std::uint8_t type) {

@@ -17,7 +17,8 @@
 // triangles (a tet refined into eight) cannot be matched by bisection alone. Quadratic cells take
 // no part. A rank finds the hanging nodes of its cells when it holds their finer neighbours, as a
 // solver's ghost layer gives (deal.II's ghost cells are every cell sharing a vertex with the
-// rank's own). One level of refinement across an edge is resolved (deal.II's 2:1 balance).
+// rank's own). One level of refinement across a face is resolved (p4est's 2:1 balance); across
+// an edge, any number (the split bisects the halves of an edge again).
 #pragma once
 
 #include <array>

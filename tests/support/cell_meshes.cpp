@@ -33,6 +33,11 @@ std::int64_t CellMesh::point(LatticePoint p) {
   return index_[p] = static_cast<std::int64_t>(points.size() - 1);
 }
 
+std::int64_t CellMesh::find(LatticePoint p) const {
+  const auto found = index_.find(p);
+  return found == index_.end() ? -1 : found->second;
+}
+
 std::int64_t CellMesh::index_of(LatticePoint p) const {
   const auto found = index_.find(p);
   if (found == index_.end()) throw std::out_of_range("no lattice point there");
@@ -108,27 +113,24 @@ void quadratic_hexahedra(CellMesh& m, LatticePoint o) {
 
 namespace {
 
-// Eight hexahedra of half the side, VTK's corner order in each.
-void refined_cube(CellMesh& m, LatticePoint o) {
+// A hexahedron of side `side` at lattice corner o, VTK's corner order.
+void add_hexahedron(CellMesh& m, LatticePoint o, double side) {
   const int dx[8] = {0, 1, 1, 0, 0, 1, 1, 0}, dy[8] = {0, 0, 1, 1, 0, 0, 1, 1},
             dz[8] = {0, 0, 0, 0, 1, 1, 1, 1};
-  for (int child = 0; child < 8; ++child) {
-    const LatticePoint half = {o[0] + 0.5 * (child & 1), o[1] + 0.5 * ((child >> 1) & 1),
-                               o[2] + 0.5 * (child >> 2)};
-    std::vector<std::int64_t> nodes;
-    for (int k = 0; k < 8; ++k) {
-      nodes.push_back(
-          m.point({half[0] + 0.5 * dx[k], half[1] + 0.5 * dy[k], half[2] + 0.5 * dz[k]}));
-    }
-    m.add(VTK_HEXAHEDRON, nodes);
+  std::vector<std::int64_t> nodes;
+  for (int k = 0; k < 8; ++k) {
+    nodes.push_back(m.point({o[0] + side * dx[k], o[1] + side * dy[k], o[2] + side * dz[k]}));
   }
+  m.add(VTK_HEXAHEDRON, nodes);
 }
 
-bool is_coarse_cube(const CellMesh& m, LatticePoint o) {
-  for (double x : o) {
-    if (x < 0 || x >= m.n) return false;
+// Eight hexahedra of half the side.
+void refined_cube(CellMesh& m, LatticePoint o) {
+  for (int child = 0; child < 8; ++child) {
+    add_hexahedron(
+        m, {o[0] + 0.5 * (child & 1), o[1] + 0.5 * ((child >> 1) & 1), o[2] + 0.5 * (child >> 2)},
+        0.5);
   }
-  return m.coarse_cubes.count(o) != 0;
 }
 
 }  // namespace
@@ -152,32 +154,70 @@ void hexahedra_refined_in_an_l(CellMesh& m, LatticePoint o) {
 }
 
 void constrain_hanging_values(const CellMesh& m, std::vector<double>& values) {
-  for (std::size_t p = 0; p < m.points.size(); ++p) {
-    const LatticePoint& x = m.points[p];
-    std::vector<int> halves;
-    for (int k = 0; k < 3; ++k) {
-      if (x[k] != std::floor(x[k])) halves.push_back(k);
-    }
-    if (halves.empty() || halves.size() == 3) continue;
-    // The coarse cubes that may hold x on their boundary: each integer coordinate on either side.
-    bool hanging = false;
-    for (int corner = 0; corner < 8 && !hanging; ++corner) {
-      LatticePoint o{};
-      for (int k = 0; k < 3; ++k) {
-        o[k] = std::floor(x[k]) - ((x[k] == std::floor(x[k]) && (corner >> k & 1)) ? 1 : 0);
-      }
-      hanging = is_coarse_cube(m, o);
-    }
-    if (!hanging) continue;
-    double sum = 0;
-    int count = 0;
-    for (int s = 0; s < (1 << halves.size()); ++s) {
-      LatticePoint q = x;
-      for (std::size_t h = 0; h < halves.size(); ++h) q[halves[h]] += (s >> h & 1) ? 0.5 : -0.5;
-      sum += values[m.index_of(q)];
-      ++count;
-    }
-    values[p] = sum / count;
+  // The hexahedra, largest first: a point on a larger cell's boundary takes its value from that
+  // cell's corners, whose own values (hanging on a still larger cell, maybe) are final by then.
+  struct Cube {
+    LatticePoint lo;
+    double side;
+    std::int64_t first;  // its nodes start at connectivity[first]
+  };
+  std::vector<Cube> cubes;
+  for (std::size_t c = 0; c < m.types.size(); ++c) {
+    if (m.types[c] != VTK_HEXAHEDRON) continue;
+    const auto first = m.offsets[c];
+    const LatticePoint& lo = m.points[m.connectivity[first]];
+    const LatticePoint& hi = m.points[m.connectivity[first + 6]];
+    cubes.push_back({lo, hi[0] - lo[0], first});
+  }
+  std::stable_sort(cubes.begin(), cubes.end(),
+                   [](const Cube& a, const Cube& b) { return a.side > b.side; });
+  constexpr double kFinest = 0.125;  // the lattice's finest step: an eighth
+  for (const Cube& cube : cubes) {
+    const int steps = static_cast<int>(std::lround(cube.side / kFinest));
+    double corner[8];
+    for (int k = 0; k < 8; ++k) corner[k] = values[m.connectivity[cube.first + k]];
+    for (int a = 0; a <= steps; ++a)
+      for (int b = 0; b <= steps; ++b)
+        for (int c = 0; c <= steps; ++c) {
+          const bool on_boundary =
+              a == 0 || b == 0 || c == 0 || a == steps || b == steps || c == steps;
+          const bool is_corner =
+              (a == 0 || a == steps) && (b == 0 || b == steps) && (c == 0 || c == steps);
+          if (!on_boundary || is_corner) continue;
+          const LatticePoint q = {cube.lo[0] + a * kFinest, cube.lo[1] + b * kFinest,
+                                  cube.lo[2] + c * kFinest};
+          const std::int64_t p = m.find(q);
+          if (p < 0) continue;
+          // Trilinear in VTK's corner order (x fastest round the bottom face, then the top).
+          const double u = double(a) / steps, v = double(b) / steps, w = double(c) / steps;
+          const double bottom = (1 - v) * ((1 - u) * corner[0] + u * corner[1]) +
+                                v * ((1 - u) * corner[3] + u * corner[2]);
+          const double top = (1 - v) * ((1 - u) * corner[4] + u * corner[5]) +
+                             v * ((1 - u) * corner[7] + u * corner[6]);
+          values[static_cast<std::size_t>(p)] = (1 - w) * bottom + w * top;
+        }
+  }
+}
+
+void hexahedra_refined_twice_along_an_edge(CellMesh& m, LatticePoint o) {
+  if (o == LatticePoint{1, 1, 1}) {
+    hexahedra(m, o);
+    m.coarse_cubes.insert(o);
+    return;
+  }
+  if (o != LatticePoint{2, 2, 1}) return refined_cube(m, o);
+  // Seven children of half the side, and the eighth, at the corner on the coarse cube's edge
+  // x = y = 2, in eight of a quarter.
+  for (int child = 1; child < 8; ++child) {
+    add_hexahedron(
+        m, {o[0] + 0.5 * (child & 1), o[1] + 0.5 * ((child >> 1) & 1), o[2] + 0.5 * (child >> 2)},
+        0.5);
+  }
+  for (int child = 0; child < 8; ++child) {
+    add_hexahedron(
+        m,
+        {o[0] + 0.25 * (child & 1), o[1] + 0.25 * ((child >> 1) & 1), o[2] + 0.25 * (child >> 2)},
+        0.25);
   }
 }
 

@@ -26,6 +26,8 @@ struct CellMesh {
   std::int64_t point(LatticePoint p);
   // The index of the point at p, which must exist.
   std::int64_t index_of(LatticePoint p) const;
+  // The index of the point at p, or -1.
+  std::int64_t find(LatticePoint p) const;
   void add(std::uint8_t vtk_type, const std::vector<std::int64_t>& nodes);
   // The coordinates as xyz interleaved, mapped from [0, n]^3 onto [lo, hi]^3.
   std::vector<double> xyz(double lo = 0, double hi = 1) const;
@@ -67,14 +69,20 @@ void hexahedra_refined_in_half(CellMesh& m, LatticePoint corner);      // cubes 
 void hexahedra_refined_alternately(CellMesh& m, LatticePoint corner);  // cubes with even i+j+k
 // Cubes with x >= n / 2 or y >= n / 2: coarse faces with two edges on refinement interfaces.
 void hexahedra_refined_in_an_l(CellMesh& m, LatticePoint corner);
+// On [0, 4]^3: the cube at (1, 1, 1) whole, every other refined once, and the child of the cube
+// at (2, 2, 1) on the whole cube's edge x = y = 2 refined again: two levels across an edge (a
+// solver that balances its refinement across faces only makes such meshes).
+void hexahedra_refined_twice_along_an_edge(CellMesh& m, LatticePoint corner);
 inline constexpr CellKind kHangingKinds[] = {
     {"hexahedra refined in half the box", hexahedra_refined_in_half},
     {"hexahedra refined in alternate cubes", hexahedra_refined_alternately},
-    {"hexahedra refined in an L", hexahedra_refined_in_an_l}};
+    {"hexahedra refined in an L", hexahedra_refined_in_an_l},
+    {"hexahedra refined twice along an edge", hexahedra_refined_twice_along_an_edge}};
 
 // The field a solver gives at hanging nodes (the hanging-node constraint of a trilinear field):
-// at a point hanging on an edge of a coarse cube, the mean of the edge's two ends; on a face, the
-// mean of its four corners. `values` holds a value per point; those at hanging points are replaced.
+// at a point on a larger cell's edge or face, that cell's trilinear interpolant of its corners
+// (the mean of the edge's two ends at its middle, of the face's four corners at its centre),
+// larger cells first. `values` holds a value per point; those at hanging points are replaced.
 void constrain_hanging_values(const CellMesh& m, std::vector<double>& values);
 
 }  // namespace tetray::testing
