@@ -49,21 +49,23 @@ inline std::span<const CellEdge> edges_of(std::span<const CellFace> faces) {
   return {};
 }
 
-// The faces of a linear cell of this type and node count; none for a quadratic cell.
+// The faces of a linear cell of this type and node count; none for a quadratic cell or a node
+// count that does not fit the type.
 inline std::span<const CellFace> linear_cell_faces(CellType type, std::size_t nodes) {
+  const auto when = [nodes](std::size_t count, std::span<const CellFace> faces) {
+    return nodes == count ? faces : std::span<const CellFace>();
+  };
   switch (type) {
     case CellType::tetra:
-      return kTetraFaces;
-    case CellType::hexahedron:
-      return kHexahedronFaces;
-    case CellType::wedge:
-      return kWedgeFaces;
-    case CellType::pyramid:
-      return kPyramidFaces;
     case CellType::lagrange_tetrahedron:
-      return nodes == 4 ? std::span<const CellFace>(kTetraFaces) : std::span<const CellFace>();
+      return when(4, kTetraFaces);
+    case CellType::hexahedron:
     case CellType::lagrange_hexahedron:
-      return nodes == 8 ? std::span<const CellFace>(kHexahedronFaces) : std::span<const CellFace>();
+      return when(8, kHexahedronFaces);
+    case CellType::wedge:
+      return when(6, kWedgeFaces);
+    case CellType::pyramid:
+      return when(5, kPyramidFaces);
     case CellType::quadratic_tetra:
       return {};
   }

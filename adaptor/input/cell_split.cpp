@@ -5,6 +5,7 @@
 
 #include "adaptor/input/cell_faces.hpp"
 #include "adaptor/input/hanging_nodes.hpp"
+#include "render/core/hash.hpp"
 
 namespace tetray {
 namespace {
@@ -305,6 +306,14 @@ bool has_quadrilateral_faces(std::span<const std::uint8_t> types) {
 }
 
 }  // namespace
+
+std::vector<std::uint64_t> position_keys(std::span<const double> xyz) {
+  std::vector<std::uint64_t> keys(xyz.size() / 3);
+  for (std::size_t p = 0; p < keys.size(); ++p) {
+    keys[p] = render::position_hash(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+  }
+  return keys;
+}
 
 SplitCells split_cells(std::span<const std::uint8_t> types, std::span<const std::int64_t> offsets,
                        std::span<const std::int64_t> connectivity,

@@ -32,8 +32,12 @@ struct SplitCells {
   std::vector<std::uint64_t> tet_cell;  // the cell each tet comes from
   std::size_t hanging_midpoints = 0;    // hanging nodes found (hanging_nodes.hpp)
   std::size_t hanging_centres = 0;
-  std::string error;                    // empty on success
+  std::string error;  // empty on success
 };
+
+// The order every rank gives the points of a shared face: each point's hash of its reference
+// position (xyz, 3 per point), the same whatever the rank's numbering.
+std::vector<std::uint64_t> position_keys(std::span<const double> xyz);
 
 // Splits cells [0, types.size()): cell c has VTK type types[c] and the points
 // connectivity[offsets[c], offsets[c + 1]). point_keys[p] orders the points (ties: by index). A

@@ -3,7 +3,6 @@
 #include <span>
 
 #include "adaptor/input/cell_split.hpp"
-#include "render/core/hash.hpp"
 
 namespace tetray {
 namespace {
@@ -39,20 +38,16 @@ std::string widen(const CellsView& c, std::vector<std::int64_t>& offsets,
   return {};
 }
 
-// The points' reference positions, in double.
-template <typename Scalar>
-std::vector<double> positions(const PointsView& points) {
-  const auto* xyz = static_cast<const Scalar*>(points.xyz);
-  return std::vector<double>(xyz, xyz + 3 * points.count);
-}
-
-// The order every rank gives the points of a shared face: their reference positions' hash.
-std::vector<std::uint64_t> position_keys(std::span<const double> xyz) {
-  std::vector<std::uint64_t> keys(xyz.size() / 3);
-  for (std::size_t p = 0; p < keys.size(); ++p) {
-    keys[p] = render::position_hash(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+// The points' reference positions in double: the solver's own array when it is double, else a
+// converted copy (held in `converted`).
+std::span<const double> positions(const PointsView& points, std::vector<double>& converted) {
+  const std::size_t values = 3 * points.count;
+  if (points.type == ScalarType::float64) {
+    return {static_cast<const double*>(points.xyz), values};
   }
-  return keys;
+  const auto* xyz = static_cast<const float*>(points.xyz);
+  converted.assign(xyz, xyz + values);
+  return converted;
 }
 
 }  // namespace
@@ -80,9 +75,8 @@ std::string CellTets::split(const MeshView& mesh) {
   std::string error = c.type == IndexType::int64 ? widen<std::int64_t>(c, offsets, connectivity)
                                                  : widen<std::int32_t>(c, offsets, connectivity);
   if (!error.empty()) return error;
-  const std::vector<double> xyz = mesh.points.type == ScalarType::float64
-                                      ? positions<double>(mesh.points)
-                                      : positions<float>(mesh.points);
+  std::vector<double> converted;
+  const std::span<const double> xyz = positions(mesh.points, converted);
   const std::vector<std::uint64_t> keys = position_keys(xyz);
   SplitCells split = split_cells(std::span(c.types, c.count), offsets, connectivity, keys, xyz);
   if (!split.error.empty()) return "mesh.cells: " + split.error;

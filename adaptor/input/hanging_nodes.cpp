@@ -15,8 +15,8 @@ namespace {
 // place only rules out a third point that is not between the ends.
 constexpr double kPlaceTolerance = 0.25;
 
-// Calls visit(cell, nodes, faces) for every linear cell whose nodes name points of the mesh (the
-// split reports the others).
+// Calls visit(cell, nodes, faces) for every linear cell whose node count fits its type and whose
+// nodes name points of the mesh (the split reports the others).
 template <typename Visit>
 void for_each_linear_cell(std::span<const std::uint8_t> types,
                           std::span<const std::int64_t> offsets,
@@ -36,11 +36,7 @@ void for_each_linear_cell(std::span<const std::uint8_t> types,
     const bool named = std::all_of(nodes.begin(), nodes.end(), [&](std::int64_t p) {
       return p >= 0 && static_cast<std::size_t>(p) < points;
     });
-    int highest = 0;
-    for (const CellFace& face : faces) {
-      for (int k = 0; k < face.count; ++k) highest = std::max(highest, face.at[k]);
-    }
-    if (named && nodes.size() > static_cast<std::size_t>(highest)) visit(c, nodes, faces);
+    if (named) visit(c, nodes, faces);
   }
 }
 

@@ -20,7 +20,6 @@
 #include <algorithm>
 
 #include "adaptor/input/cell_split.hpp"
-#include "render/core/hash.hpp"
 
 namespace tetray::vtkio {
 namespace {
@@ -71,11 +70,7 @@ std::string copy_cells(vtkUnstructuredGrid* grid, VtkCells& out) {
 // The cells as tets (cell_split.hpp), with their ghost flags; the order of the points is that of
 // their positions, so that every rank and file splits a shared face alike.
 std::string split_into_tets(const VtkCells& cells, TetGrid& grid) {
-  std::vector<std::uint64_t> keys(grid.points.size() / 3);
-  for (std::size_t p = 0; p < keys.size(); ++p) {
-    keys[p] =
-        render::position_hash(grid.points[3 * p], grid.points[3 * p + 1], grid.points[3 * p + 2]);
-  }
+  const std::vector<std::uint64_t> keys = position_keys(grid.points);
   SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys, grid.points);
   if (!split.error.empty()) return split.error;
   grid.tets = std::move(split.tets);

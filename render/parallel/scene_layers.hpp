@@ -19,12 +19,6 @@
 
 namespace tetray::render {
 
-// Collective over `comm`. `local` is this rank's layers (trace_layers with scene.options). On
-// return the writer's `image` is the blended image, with the first layer's view depth and key.
-// A rank alone in `comm` blends its own layers where they are, with no gather: `local` is then
-// left with each pixel's fragments in depth order and its shadowed colors. A rank whose shadow
-// rays failed (memory) still takes part in every collective, with no occlusion, and returns a
-// local error afterwards.
 // The writer's merged layers of a view, kept by the caller from frame to frame so that their
 // storage is reused (a fresh image of fragments each frame cost its page faults).
 struct MergedLayers {
@@ -32,7 +26,13 @@ struct MergedLayers {
   std::vector<FragmentImage> shadow_terms;
 };
 
+// Collective over `comm`. `local` is this rank's layers (trace_layers with scene.options). On
+// return the writer's `image` is the blended image, with the first layer's view depth and key;
+// `kept` holds the writer's merged layers. A rank alone in `comm` blends its own layers where
+// they are, with no gather: `local` is then left with each pixel's fragments in depth order and
+// its shadowed colors. A rank whose shadow rays failed (memory) still takes part in every
+// collective, with no occlusion, and returns a local error afterwards.
 ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
-                                MPI_Comm comm, Framebuffer& image, MergedLayers& merged);
+                                MPI_Comm comm, Framebuffer& image, MergedLayers& kept);
 
 }  // namespace tetray::render

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "adaptor/input/cell_split.hpp"
-#include "render/core/hash.hpp"
 #include "support/cell_meshes.hpp"
 #include "support/reference_comparison.hpp"
 #include "support/watertight.hpp"
@@ -32,11 +31,7 @@ SplitMesh split_mesh(const testing::CellKind& kind, bool use_hanging_nodes = tru
   const testing::CellMesh cells = testing::lattice(kCubes, kind.make);
   SplitMesh mesh;
   mesh.points = cells.xyz(-1, 1);
-  std::vector<std::uint64_t> keys(cells.points.size());
-  for (std::size_t p = 0; p < keys.size(); ++p) {
-    const double* x = &mesh.points[3 * p];
-    keys[p] = render::position_hash(x[0], x[1], x[2]);
-  }
+  const std::vector<std::uint64_t> keys = position_keys(mesh.points);
   SplitCells split = split_cells(cells.types, cells.offsets, cells.connectivity, keys,
                                  use_hanging_nodes ? mesh.points : std::vector<double>());
   EXPECT_EQ(split.error, "") << kind.name;

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "adaptor/input/cell_split.hpp"
-#include "render/core/hash.hpp"
 #include "render/core/stopwatch.hpp"
 #include "tools/bench_common/json_file.hpp"
 
@@ -86,10 +85,7 @@ Json::Value split_timing(const std::vector<int>& sizes, int runs) {
   for (const int m : sizes) {
     for (const bool refine : {false, true}) {
       const HexMesh mesh = lattice(m, refine);
-      std::vector<std::uint64_t> keys(mesh.xyz.size() / 3);
-      for (std::size_t p = 0; p < keys.size(); ++p) {
-        keys[p] = render::position_hash(mesh.xyz[3 * p], mesh.xyz[3 * p + 1], mesh.xyz[3 * p + 2]);
-      }
+      const std::vector<std::uint64_t> keys = position_keys(mesh.xyz);
       const Timed with = best_split(mesh, keys, mesh.xyz, runs);
       const Timed without = best_split(mesh, keys, {}, runs);
       const char* name = refine ? "hexahedra, half refined" : "hexahedra";
