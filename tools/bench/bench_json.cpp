@@ -81,14 +81,8 @@ Json::Value scene(const SceneFigures& figures) {
   json["shading"] = shading_json(figures.shading);
   json["layers"] = layers_json(figures.layers);
   json["cap"] = cap_json(figures.cap);
-  for (const TargetCheck& check : check_targets(figures)) {
-    Json::Value target;
-    target["name"] = check.name;
-    target["measured"] = check.measured;
-    target["target"] = check.target;
-    target["pass"] = check.pass;
-    json["targets"].append(target);
-  }
+  for (const TargetCheck& check : check_targets(figures))
+    json["targets"].append(target_json(check));
   return json;
 }
 

@@ -20,6 +20,7 @@
 #include "bench_reference_vtk.hpp"
 #include "bench_refit.hpp"
 #include "bench_table.hpp"
+#include "bench_targets.hpp"
 #include "bench_tetray.hpp"
 #include "bench_timing.hpp"
 #include "bench_volume.hpp"
@@ -152,6 +153,41 @@ void measure_volume_only(const BenchOptions& options) {
   if (!options.json_path.empty()) write_json_file(json, options.json_path);
 }
 
+// The shading, transparency and cap figures alone, per size, with their targets: the quick run
+// for work on one of these modalities.
+void measure_modalities_only(const BenchOptions& options) {
+  tbb::task_arena arena(options.threads);
+  const MachineInfo machine = describe_machine();
+  print_header(machine, options.threads, options.size_px);
+  Json::Value json;
+  for (const int n : options.sizes) {
+    arena.execute([&] {
+      const GyroidTwist scene = make_gyroid_twist(n, 0.0);
+      const render::Camera camera = bench_camera(options.size_px);
+      std::printf("\n== gyroid-twist n = %d: %zu tets ==\n", n, scene.mesh.tet_count());
+      const ShadingFigures shading = measure_shading(scene, camera);
+      print_shading(shading);
+      const LayerFigures layers = measure_layers(scene, camera);
+      print_layers(layers);
+      const CapFigures cap = measure_cap(scene, camera);
+      print_cap(cap);
+      Json::Value size;
+      size["n"] = n;
+      size["shading"] = shading_json(shading);
+      size["layers"] = layers_json(layers);
+      size["cap"] = cap_json(cap);
+      std::printf("  targets\n");
+      for (const TargetCheck& check : check_modality_targets(shading, layers, cap)) {
+        print_target(check);
+        size["targets"].append(target_json(check));
+      }
+      json["modalities"].append(size);
+      std::fflush(stdout);
+    });
+  }
+  if (!options.json_path.empty()) write_json_file(json, options.json_path);
+}
+
 }  // namespace
 }  // namespace tetray::bench
 
@@ -167,6 +203,10 @@ int main(int argc, char** argv) {
     }
     if (options.volume_only) {
       measure_volume_only(options);
+      return 0;
+    }
+    if (options.modalities_only) {
+      measure_modalities_only(options);
       return 0;
     }
     const BenchReport report = run_bench(options);

@@ -24,6 +24,9 @@ BenchOptions parse_options(int argc, char** argv, int& exit_code) {
                  "writing its CSV here");
   app.add_flag("--volume-only", options.volume_only,
                "only the volume-rendering figures of each size (shells, dense, skipping)");
+  app.add_flag("--modalities-only", options.modalities_only,
+               "only the shadow, clip, smooth-shading, transparency and cap figures of each size, "
+               "with their targets");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -15,6 +15,8 @@ struct BenchOptions {
   std::string lod_study_path;  // non-empty: only the level-of-detail study, as CSV here
   std::string dvr_study_path;  // not empty: only the volume-rendering error study, to this CSV
   bool volume_only = false;    // only the volume-rendering figures (bench_volume.hpp) per size
+  // Only the shading, transparency and cap figures per size, with their targets.
+  bool modalities_only = false;
 };
 
 // Parses argv; on --help or an error prints the message and returns the exit code to leave

@@ -2,7 +2,8 @@
 // shadowing point light (trace with its term, shadow rays from the hit points, shading), with a
 // clip box that removes half the volume, and with smooth normals (and the vertex gradients they
 // need, computed once per update), each timed in turn with the plain frame in the same run and
-// reported as a ratio to it.
+// reported as a ratio to it. The smooth step (update, gradients, frame) is also set beside the
+// flat one (update, frame), which is what a solver pays per rendered step.
 #pragma once
 
 #include <json/json.h>
@@ -18,12 +19,16 @@ struct ShadingFigures {
   double clip_ms = 0;    // a clip box keeping x <= 0
   double smooth_ms = 0;
   double gradients_ms = 0;       // the smooth frame's vertex gradients, once per update
+  double update_ms = 0;          // a step's geometry and field update (refit), without them
   double shadowed_fraction = 0;  // of the hit pixels, in the shadow of the point light
 };
 
 // The default packets (render::TraceOptions), one rank.
 ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& camera);
 void print_shading(const ShadingFigures& figures);
+
+// The smooth step over the flat step, both with the update of a new step.
+double smooth_step_ratio(const ShadingFigures& figures);
 Json::Value shading_json(const ShadingFigures& figures);
 
 }  // namespace tetray::bench

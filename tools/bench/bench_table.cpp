@@ -74,9 +74,7 @@ void print_targets(const SceneFigures& s) {
       "size%s)\n",
       kFixedTargetScene, s.n == kFixedTargetScene ? "" : ", shown for reference",
       s.n == reference_targets(s.n).n ? "" : ", the nearest shown for reference");
-  for (const TargetCheck& check : check_targets(s))
-    std::printf("    %-34s %-20s %-14s %s\n", check.name.c_str(), check.measured.c_str(),
-                check.target.c_str(), check.pass ? "PASS" : "MISS");
+  for (const TargetCheck& check : check_targets(s)) print_target(check);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 namespace tetray::bench {
 namespace {
@@ -27,6 +28,20 @@ TargetCheck against_vtk(const VtkVolumeFigures& vtk, const std::string& mapper, 
 }
 
 }  // namespace
+
+void print_target(const TargetCheck& check) {
+  std::printf("    %-34s %-20s %-14s %s\n", check.name.c_str(), check.measured.c_str(),
+              check.target.c_str(), check.pass ? "PASS" : "MISS");
+}
+
+Json::Value target_json(const TargetCheck& check) {
+  Json::Value target;
+  target["name"] = check.name;
+  target["measured"] = check.measured;
+  target["target"] = check.target;
+  target["pass"] = check.pass;
+  return target;
+}
 
 const ReferenceTargets& reference_targets(int n) {
   const ReferenceTargets* nearest = &kReferenceTargets[0];
@@ -84,7 +99,23 @@ std::vector<TargetCheck> check_targets(const SceneFigures& s) {
     checks.push_back(against_vtk(s.vtk_volume, "projected tetrahedra (OpenGL)", 2));
     checks.push_back(against_vtk(s.vtk_volume, "ray cast, linear integrator", 10));
   }
+  for (TargetCheck& check : check_modality_targets(s.shading, s.layers, s.cap))
+    checks.push_back(std::move(check));
   return checks;
+}
+
+std::vector<TargetCheck> check_modality_targets(const ShadingFigures& shading,
+                                                const LayerFigures& layers, const CapFigures& cap) {
+  const auto at_most = [](const char* name, double ratio, double target) {
+    return TargetCheck{name, format("%.2fx", ratio), format("<= %.1fx", target), ratio <= target};
+  };
+  return {
+      at_most("shadowing point light / plain", shading.shadow_ms / shading.plain_ms, 2),
+      at_most("4 layers / the same surfaces opaque", layers.transparent_ms / layers.opaque_pair_ms,
+              2),
+      at_most("smooth step / flat step", smooth_step_ratio(shading), 1.5),
+      at_most("clip cap / plain", cap.cap_ms / cap.plain_ms, 2),
+  };
 }
 
 }  // namespace tetray::bench

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <json/json.h>
+
 #include "bench_results.hpp"
 
 namespace tetray::bench {
@@ -35,5 +37,15 @@ struct TargetCheck {
 };
 
 std::vector<TargetCheck> check_targets(const SceneFigures& figures);
+
+// One row of the table ("name  measured  target  PASS|MISS"), and its JSON object.
+void print_target(const TargetCheck& check);
+Json::Value target_json(const TargetCheck& check);
+
+// The in-situ budget of each modality against the plain frame of the same run: a shadowing point
+// light, four transparent layers (against the same surfaces opaque), the smooth step with its
+// gradients (against the flat step) and a clip cap. Part of check_targets.
+std::vector<TargetCheck> check_modality_targets(const ShadingFigures& shading,
+                                                const LayerFigures& layers, const CapFigures& cap);
 
 }  // namespace tetray::bench
