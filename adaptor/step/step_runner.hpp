@@ -110,6 +110,7 @@ class Adaptor::Impl {
   // outcome on this rank). Collective when some due scene is smooth and there are several ranks.
   Status share_gradients(const MeshView& mesh, Status updated);
   bool smooth_volume(std::size_t v) const;
+  std::vector<float> gradient_isovalues(std::size_t v) const;
   Status global_inputs(std::span<const FieldView> fields);
 
   // trace_scenes.cpp and render_volume_scenes.cpp

@@ -52,6 +52,7 @@ render::UpdatePolicy Adaptor::Impl::update_policy(std::size_t v) const {
   render::UpdatePolicy policy = config_.bvh;
   // On several ranks the gradients wait for the other ranks' sums (share_gradients).
   policy.vertex_gradients = smooth_volume(v) && comm_.size == 1;
+  policy.gradient_isovalues = gradient_isovalues(v);
   policy.node_planes =
       any_scene_of(scenes_, v, [](const config::Scene& c) { return c.lod_node_pixels > 0; });
   // A cap locates a point per pixel in the leaves: smaller ones, unless the config says.
@@ -63,6 +64,21 @@ render::UpdatePolicy Adaptor::Impl::update_policy(std::size_t v) const {
 
 bool Adaptor::Impl::smooth_volume(std::size_t v) const {
   return any_scene_of(scenes_, v, [](const config::Scene& c) { return c.shading.smooth; });
+}
+
+// The isovalues whose tets' corners need gradients: the surfaces of volume v's smooth scenes,
+// ascending. Empty (every vertex) when one of them draws level-of-detail proxies, whose hits
+// name a tet of the node that need not straddle a surface.
+std::vector<float> Adaptor::Impl::gradient_isovalues(std::size_t v) const {
+  std::vector<float> values;
+  for (const SceneState& s : scenes_) {
+    if (s.volume != v || !s.config.shading.smooth) continue;
+    if (s.config.lod_node_pixels > 0) return {};
+    for (const render::IsoSurface& surface : s.config.surfaces) values.push_back(surface.value);
+  }
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  return values;
 }
 
 // A rank whose tets share a vertex with another rank's sees only its own tets there, so the
@@ -95,7 +111,7 @@ Status Adaptor::Impl::share_gradients(const MeshView& mesh, Status updated) {
       if (changes[v] & kGradientsLoaded) {
         shared = shared_gradients_[v].match(volume, point_source(mesh.points), comm_.comm);
       }
-      if (shared.ok()) shared = shared_gradients_[v].compute(volume);
+      if (shared.ok()) shared = shared_gradients_[v].compute(volume, gradient_isovalues(v));
       if (!shared.ok()) return to_status(std::move(shared));
     }
     return Status::success();

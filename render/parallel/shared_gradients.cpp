@@ -88,21 +88,25 @@ ProtocolStatus SharedGradients::match(const TetVolume& volume, const PointSource
   return ProtocolStatus::success();
 }
 
-ProtocolStatus SharedGradients::compute(TetVolume& volume) const {
+ProtocolStatus SharedGradients::compute(TetVolume& volume, std::span<const float> isovalues) const {
+  std::vector<std::uint8_t> needed = vertices_of_surfaces(volume, isovalues);
+  for (std::uint32_t p : points_) needed[vertex_of(volume, p)] = 1;
+  const std::span<const std::uint8_t> flags =
+      isovalues.empty() ? std::span<const std::uint8_t>{} : std::span(needed);
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  gradient_exponents(volume, exponents, tet_counts);
+  gradient_exponents(volume, exponents, tet_counts, flags);
   const auto max = [&](auto values, std::size_t width) { return shared_.max(values, width); };
   const auto sum = [&](auto values, std::size_t width) { return shared_.sum(values, width); };
   int rc = combine_shared(volume, points_, exponents, max);
   if (rc != MPI_SUCCESS) return failed("exponents", rc);
   rc = combine_shared(volume, points_, tet_counts, sum);
   if (rc != MPI_SUCCESS) return failed("tet counts", rc);
-  gradient_sums(volume, exponents, tet_counts, sums);
+  gradient_sums(volume, exponents, tet_counts, sums, flags);
   rc = combine_shared(volume, points_, sums, sum);
   if (rc != MPI_SUCCESS) return failed("sums", rc);
-  gradients_from_sums(volume, exponents, sums);
+  gradients_from_sums(volume, exponents, sums, flags);
   return ProtocolStatus::success();
 }
 

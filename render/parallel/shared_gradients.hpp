@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "render/parallel/protocol_status.hpp"
@@ -29,8 +30,10 @@ class SharedGradients {
 
   // Collective over match's communicator: fills volume.gradients, update's three local passes
   // with the shared vertices' exponents, tet counts and sums combined over the ranks between
-  // them.
-  ProtocolStatus compute(TetVolume& volume) const;
+  // them. Like compute_vertex_gradients, only at the corners of the tets that straddle
+  // `isovalues` (ascending; every vertex when empty), and at every shared vertex: each rank then
+  // sums all its tets there, whichever rank's tets straddle.
+  ProtocolStatus compute(TetVolume& volume, std::span<const float> isovalues = {}) const;
 
  private:
   SharedVertices shared_;

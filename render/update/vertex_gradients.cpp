@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <utility>
@@ -100,38 +101,52 @@ std::vector<std::int32_t> owned_vertex_starts(const TetVolume& volume) {
   return first;
 }
 
+// Whether a tet adds to a vertex that is needed (render/update/vertex_gradients.hpp).
+bool adds_to_needed(std::span<const std::uint8_t> needed, const Tet& tet) {
+  return needed.empty() ||
+         (needed[static_cast<std::size_t>(tet.v[0])] | needed[static_cast<std::size_t>(tet.v[1])] |
+          needed[static_cast<std::size_t>(tet.v[2])] |
+          needed[static_cast<std::size_t>(tet.v[3])]) != 0;
+}
+
 // Where the pairs (vertex, tet's terms) of the vertices chunk c does not own start in one array
 // that holds every chunk's in chunk order, then their count. Counted first, so that the array is
 // allocated once, on huge pages: grown per chunk on 4 KiB pages, faulted in one by one, it was
 // most of the time of the gradients at 14M tets.
 std::vector<std::size_t> waiting_starts(const TetVolume& volume,
-                                        std::span<const std::int32_t> first) {
+                                        std::span<const std::int32_t> first,
+                                        std::span<const std::uint8_t> needed) {
   const std::size_t chunks = first.size() - 1;
   std::vector<std::size_t> start(chunks + 1, 0);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
     std::size_t waiting = 0;
-    for (const Tet& tet : chunk_tets(volume, c))
+    for (const Tet& tet : chunk_tets(volume, c)) {
+      if (!adds_to_needed(needed, tet)) continue;
       for (const std::int32_t k : tet.v) waiting += k < first[c];
+    }
     start[c + 1] = waiting;
   });
   for (std::size_t c = 1; c <= chunks; ++c) start[c] += start[c - 1];
   return start;
 }
 
-// Calls add(k, prepare(terms)) for each tet's vertices k: what depends on the tet alone is
-// prepared once for its four vertices. In parallel over contiguous chunks of tets, each owning
-// a range of vertices (owned_vertex_starts): a chunk adds to its own vertices at once and keeps
-// the others' pairs, added after all chunks. The vertices are numbered in the tets' first-use
-// order, so few pairs wait; and the sums are exact, so the order of the adds changes nothing.
+// Calls add(k, prepare(terms)) for each tet's vertices k, for the tets that add to a needed
+// vertex: what depends on the tet alone is prepared once for its four vertices. In parallel over
+// contiguous chunks of tets, each owning a range of vertices (owned_vertex_starts): a chunk adds
+// to its own vertices at once and keeps the others' pairs, added after all chunks. The vertices
+// are numbered in the tets' first-use order, so few pairs wait; and the sums are exact, so the
+// order of the adds changes nothing.
 template <typename Prepare, typename Add>
-void for_each_tet_vertex(const TetVolume& volume, Prepare&& prepare, Add&& add) {
+void for_each_tet_vertex(const TetVolume& volume, std::span<const std::uint8_t> needed,
+                         Prepare&& prepare, Add&& add) {
   using Prepared = decltype(prepare(TetTerms{}));
   const std::vector<std::int32_t> first = owned_vertex_starts(volume);
-  const std::vector<std::size_t> waiting_start = waiting_starts(volume, first);
+  const std::vector<std::size_t> waiting_start = waiting_starts(volume, first, needed);
   LargeArray<std::pair<std::int32_t, Prepared>> waiting(waiting_start.back());
   tbb::parallel_for(std::size_t{0}, first.size() - 1, [&](std::size_t c) {
     auto* next_waiting = waiting.data() + waiting_start[c];
     for (const Tet& tet : chunk_tets(volume, c)) {
+      if (!adds_to_needed(needed, tet)) continue;
       const Prepared prepared = prepare(tet_terms(volume, tet));
       for (const std::int32_t k : tet.v) {
         if (k >= first[c]) {
@@ -147,12 +162,38 @@ void for_each_tet_vertex(const TetVolume& volume, Prepare&& prepare, Add&& add) 
 
 }  // namespace
 
+std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
+                                               std::span<const float> isovalues) {
+  std::vector<std::uint8_t> needed(volume.vertices.size(), 0);
+  if (isovalues.empty()) return needed;
+  // Corners of neighbouring tets are written by different threads: each flag is set, never
+  // cleared, and to the same value, through an atomic reference (no tear, no race).
+  tbb::parallel_for(std::size_t{0}, chunk_count(volume), [&](std::size_t c) {
+    for (const Tet& tet : chunk_tets(volume, c)) {
+      float lo = volume.vertices[tet.v[0]].f, hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        const float f = volume.vertices[tet.v[k]].f;
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+      // The first isovalue above lo: the tet straddles it when it is at most hi.
+      const auto above = std::upper_bound(isovalues.begin(), isovalues.end(), lo);
+      if (above == isovalues.end() || !(*above <= hi)) continue;
+      for (const std::int32_t k : tet.v)
+        std::atomic_ref<std::uint8_t>(needed[static_cast<std::size_t>(k)])
+            .store(1, std::memory_order_relaxed);
+    }
+  });
+  return needed;
+}
+
 void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
-                        LargeArray<std::int32_t>& tet_counts) {
+                        LargeArray<std::int32_t>& tet_counts,
+                        std::span<const std::uint8_t> needed) {
   exponents.assign(volume.vertices.size(), {kNoTerm, kNoTerm, kNoTerm, kNoTerm});
   tet_counts.assign(volume.vertices.size(), 0);
   for_each_tet_vertex(
-      volume,
+      volume, needed,
       [](const TetTerms& terms) {
         VertexExponents e;
         for (int c = 0; c < 4; ++c) e[c] = exponent_of(terms[c]);
@@ -165,7 +206,8 @@ void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& ex
 }
 
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums) {
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums,
+                   std::span<const std::uint8_t> needed) {
   LargeArray<Grid> grids(volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grids.size()), [&](const auto& block) {
     for (std::size_t k = block.begin(); k != block.end(); ++k) {
@@ -174,7 +216,7 @@ void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exp
   });
   sums.assign(volume.vertices.size(), {0, 0, 0, 0});
   for_each_tet_vertex(
-      volume, [](const TetTerms& terms) { return terms; },
+      volume, needed, [](const TetTerms& terms) { return terms; },
       [&](std::int32_t k, const TetTerms& terms) {
         const Grid& grid = grids[k];
         for (int c = 0; c < 4; ++c) {
@@ -184,12 +226,13 @@ void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exp
 }
 
 void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exponents,
-                         std::span<const VertexSums> sums) {
+                         std::span<const VertexSums> sums, std::span<const std::uint8_t> needed) {
   volume.gradients.resize(volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sums.size()), [&](const auto& block) {
     for (std::size_t k = block.begin(); k != block.end(); ++k) {
       const VertexSums& s = sums[k];
-      if (!(s[3] > 0)) {
+      // A vertex that is not needed holds the terms of some of its tets only.
+      if (!(s[3] > 0) || (!needed.empty() && needed[k] == 0)) {
         volume.gradients[k] = {0, 0, 0};
         continue;
       }
@@ -204,13 +247,16 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
   });
 }
 
-void compute_vertex_gradients(TetVolume& volume) {
+void compute_vertex_gradients(TetVolume& volume, std::span<const float> isovalues) {
+  const std::vector<std::uint8_t> needed = vertices_of_surfaces(volume, isovalues);
+  const std::span<const std::uint8_t> flags =
+      isovalues.empty() ? std::span<const std::uint8_t>{} : std::span(needed);
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  gradient_exponents(volume, exponents, tet_counts);
-  gradient_sums(volume, exponents, tet_counts, sums);
-  gradients_from_sums(volume, exponents, sums);
+  gradient_exponents(volume, exponents, tet_counts, flags);
+  gradient_sums(volume, exponents, tet_counts, sums, flags);
+  gradients_from_sums(volume, exponents, sums, flags);
 }
 
 }  // namespace tetray::render

@@ -61,21 +61,38 @@ inline constexpr int kLeastExponent = -1021;
 // The per-vertex arrays of the passes are large arrays (huge pages): at 14M tets they hold about
 // 100 MB per update, and on 4 KiB pages their faults cost more than the passes' arithmetic.
 
+// Only the gradients a frame reads are needed: those of the corners of the tets a surface
+// passes through (interpolate_normals reads the hit tet's four). `needed` has a flag per vertex;
+// the passes skip every tet none of whose corners is flagged, so each flagged vertex still gets
+// the terms of all its tets, and its gradient is the same to the bit as when every tet is
+// summed. The other vertices' gradients are zero. An empty `needed` flags every vertex.
+// On a gyroid of 1M tets with one surface, about a third of the tets have a flagged corner.
+
+// Flags the corners of the tets that straddle one of `isovalues` (ascending), by the tracer's
+// test: some isovalue in (the tet's least value, its largest]. On several ranks the caller also
+// flags the vertices other ranks share (their sums must hold every rank's tets).
+std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
+                                               std::span<const float> isovalues);
+
 // Pass 1: `exponents` and `tet_counts` get one entry per vertex, from this rank's tets.
 void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
-                        LargeArray<std::int32_t>& tet_counts);
+                        LargeArray<std::int32_t>& tet_counts,
+                        std::span<const std::uint8_t> needed = {});
 
 // Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids that
 // `exponents` and `tet_counts` (over all ranks) set.
 void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums);
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums,
+                   std::span<const std::uint8_t> needed = {});
 
 // Fills volume.gradients from the sums: the gradient sum over the |det| sum (zero for a vertex
-// of flat tets only).
+// of flat tets only, or one `needed` does not flag).
 void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exponents,
-                         std::span<const VertexSums> sums);
+                         std::span<const VertexSums> sums,
+                         std::span<const std::uint8_t> needed = {});
 
-// The three passes in a row, for a volume that shares no vertex with another rank.
-void compute_vertex_gradients(TetVolume& volume);
+// The three passes in a row, for a volume that shares no vertex with another rank: at the
+// corners of the tets that straddle `isovalues` (ascending), or at every vertex when it is empty.
+void compute_vertex_gradients(TetVolume& volume, std::span<const float> isovalues = {});
 
 }  // namespace tetray::render

@@ -114,7 +114,7 @@ UpdateResult rebuild(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
 
 // What the scenes derive from a new step beyond the BVH, only when one asks for it.
 void derive_per_step(TetVolume& volume, Bvh& bvh, const UpdatePolicy& policy) {
-  if (policy.vertex_gradients) compute_vertex_gradients(volume);
+  if (policy.vertex_gradients) compute_vertex_gradients(volume, policy.gradient_isovalues);
   if (policy.node_planes) fit_node_planes(volume, bvh, bvh.lod_planes);
 }
 

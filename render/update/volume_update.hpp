@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "render/bvh/bvh.hpp"
 #include "render/volume/point_source.hpp"
@@ -22,7 +23,9 @@ struct UpdatePolicy {
   double rebuild_ratio = 1.5;  // rebuild when SAH cost / cost at build exceeds this
   BvhBuildOptions build{};
   bool vertex_gradients = false;  // keep TetVolume::gradients current (smooth shading)
-  bool node_planes = false;       // keep Bvh::lod_planes current (level of detail)
+  // Where: at the corners of the tets that straddle these (ascending), or everywhere when empty.
+  std::vector<float> gradient_isovalues;
+  bool node_planes = false;  // keep Bvh::lod_planes current (level of detail)
 };
 
 struct UpdateResult {

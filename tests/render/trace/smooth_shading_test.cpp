@@ -243,6 +243,58 @@ AngleErrors sphere_angle_errors(bool smooth) {
   return errors;
 }
 
+// Gradients only where the surfaces need them: at every corner of every tet that straddles an
+// isovalue they are the gradients of all tets to the bit, the other vertices are left at zero,
+// and the image is the one of the gradients computed everywhere.
+TEST(VertexGradients, AtTheSurfacesCornersTheSameBitsAsEverywhere) {
+  const BoxMesh box = jittered_box(8);
+  const auto f = sample_field(box.points, [](Vec3d p) { return length(p) + 0.2 * p.x * p.y; });
+  RenderScene everywhere = load_scene(box.points, box.tets, f);
+  RenderScene surfaces = load_scene(box.points, box.tets, f);
+  render::compute_vertex_gradients(everywhere.volume);
+  const float isovalues[] = {0.45f, 0.8f};
+  render::compute_vertex_gradients(surfaces.volume, isovalues);
+  const render::TetVolume& v = surfaces.volume;
+  ASSERT_EQ(v.gradients.size(), everywhere.volume.gradients.size());
+  std::vector<std::uint8_t> on_surface(v.vertices.size(), 0);
+  for (const render::Tet& tet : v.tets) {
+    float lo = v.vertices[tet.v[0]].f, hi = lo;
+    for (int k = 1; k < 4; ++k) {
+      lo = std::min(lo, v.vertices[tet.v[k]].f);
+      hi = std::max(hi, v.vertices[tet.v[k]].f);
+    }
+    const bool straddles = std::any_of(std::begin(isovalues), std::end(isovalues),
+                                       [&](float iso) { return lo < iso && iso <= hi; });
+    if (straddles)
+      for (const std::int32_t k : tet.v) on_surface[static_cast<std::size_t>(k)] = 1;
+  }
+  std::size_t flagged = 0, differing = 0, nonzero_elsewhere = 0;
+  for (std::size_t k = 0; k < v.vertices.size(); ++k) {
+    const render::Vec3f a = v.gradients[k], b = everywhere.volume.gradients[k];
+    if (on_surface[k]) {
+      ++flagged;
+      differing += std::memcmp(&a, &b, sizeof a) != 0;
+    } else {
+      nonzero_elsewhere += a.x != 0 || a.y != 0 || a.z != 0;
+    }
+  }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(nonzero_elsewhere, 0u);
+  // Both surfaces cross the box, and most vertices lie off them: the skip is real.
+  EXPECT_GT(flagged, v.vertices.size() / 10);
+  EXPECT_LT(flagged, v.vertices.size() / 2);
+
+  const render::Camera camera = look_at({0.4, 0.9, 2.6}, {0, 0, 0}, 30, 64, 64);
+  render::TraceOptions smooth;
+  smooth.smooth = true;
+  for (const float iso : isovalues) {  // the outer surface hides the inner one: one at a time
+    const render::IsoSurface drawn[] = {{iso, {1, 1, 1}}};
+    const auto a = render::trace(everywhere.volume, everywhere.bvh, camera, drawn, smooth);
+    const auto b = render::trace(surfaces.volume, surfaces.bvh, camera, drawn, smooth);
+    EXPECT_EQ(image_difference(a, b), "") << "isovalue " << iso;
+  }
+}
+
 TEST(SmoothShading, SphereNormalsFollowTheAnalyticNormalFarBetterThanFlat) {
   const AngleErrors flat = sphere_angle_errors(false), smooth = sphere_angle_errors(true);
   constexpr double kDegree = std::numbers::pi / 180;
