@@ -298,17 +298,37 @@ class IsopolygonIntersector {
     return any_hit;
   }
 
+  // For a caller that keeps more than the nearest hit (nearest_layers.hpp): calls
+  // visit(base, ahead, t) for each lane batch that holds a pixel of `covered`, with the lanes
+  // whose rays meet the polygon ahead of the eye (and pass the filter) and their distances, by
+  // the tests and the distance intersect_rays uses.
+  template <typename Visit>
+  void for_each_hit_batch(const PolygonSetup& s, const PolygonHit& id, const CoveredPixels& covered,
+                          Visit&& visit) {
+    constexpr int rows = Packet::kBlockRows, columns = Packet::kBlockColumns;
+    for (int row = covered.first_row / rows * rows; row <= covered.last_row; row += rows)
+      for (int column = covered.first_column / columns * columns; column <= covered.last_column;
+           column += columns) {
+        const int base = Packet::index(row, column);
+        const auto [ahead, t] = lane_hits(s, id, base);
+        if (simd::any(ahead)) visit(base, ahead, t);
+      }
+  }
+
  private:
+  // The rays of a lane batch that meet a polygon ahead of the eye (and pass the filter), and
+  // their distances to it.
+  struct LaneHits {
+    typename Packet::Lanes::M ahead;
+    F t;
+  };
+
   bool culled() {
     if constexpr (kStats) ++stats_.frustum_culled_isopolygons;
     return false;
   }
 
-  // Without a branch on whether any ray is inside the polygon or wins: both are data the branch
-  // predictor cannot guess for small polygons, and the masked stores of a lane batch that wins
-  // nothing write nothing. The tiled frame without them (AVX-512, alternating runs, best of 5): 1M
-  // tets 6.44 -> 5.65 ms, 4M 11.57 -> 10.45 ms, 14M 19.26 -> 17.97 ms, the same images.
-  bool intersect_lanes(const PolygonSetup& s, const PolygonHit& id, int base) {
+  LaneHits lane_hits(const PolygonSetup& s, const PolygonHit& id, int base) {
     if constexpr (kStats) stats_.ray_isopolygon_tests += W;
     const F dx = simd::load(packet_.dx + base, F{}), dy = simd::load(packet_.dy + base, F{}),
             dz = simd::load(packet_.dz + base, F{});
@@ -320,10 +340,19 @@ class IsopolygonIntersector {
     }
     const auto inside = simd::either(lo >= F(0.0f), hi <= F(0.0f));
     const F t = distance(s, dx, dy, dz);
-    const F tmax = simd::load(packet_.tmax + base, F{});
     auto ahead = simd::both(inside, t > F(0.0f));
     if constexpr (!HitFilter::kKeepsAll)
       ahead = simd::both(ahead, filter_.keeps(packet_.eye, t, dx, dy, dz, base, id.key));
+    return {ahead, t};
+  }
+
+  // Without a branch on whether any ray is inside the polygon or wins: both are data the branch
+  // predictor cannot guess for small polygons, and the masked stores of a lane batch that wins
+  // nothing write nothing. The tiled frame without them (AVX-512, alternating runs, best of 5): 1M
+  // tets 6.44 -> 5.65 ms, 4M 11.57 -> 10.45 ms, 14M 19.26 -> 17.97 ms, the same images.
+  bool intersect_lanes(const PolygonSetup& s, const PolygonHit& id, int base) {
+    const auto [ahead, t] = lane_hits(s, id, base);
+    const F tmax = simd::load(packet_.tmax + base, F{});
     // Nearer than the hit so far, or exactly as near (a shared edge or vertex, or a surface seen
     // twice) with a smaller tie key.
     const auto tie_won =

@@ -6,6 +6,7 @@
 // the same layers bitwise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -139,6 +140,45 @@ TEST(Layers, TransparentSurfacesAgreeWithTheReference) {
   const double isovalues[] = {-0.5, 0.0, 0.5};
   const float opacity[] = {0.3f, 0.5f, 0.7f};
   expect_layers_agree(isovalues, opacity, render::kMaxLayers, {}, "transparent");
+}
+
+// Surfaces lying exactly in the mesh's faces: a ray meets the polygons of several tets at one
+// distance, told apart only by their keys, and two surfaces at one isovalue. The tiles keep each ray's nearest layers from one test
+// of their bins and the packets peel them layer by layer; they agree bitwise, ties included.
+TEST(Layers, TiesInFacesTheTilesKeepAsThePacketsPeel) {
+  const BoxMesh box = jittered_box(6, 0.0);
+  const auto f = sample_field(box.points, [](Vec3d p) { return p.x; });
+  const RenderScene scene = load_scene(box.points, box.tets, f);
+  // Three of the grid's planes x = const, as the vertex store holds their values.
+  std::vector<float> planes;
+  for (const render::Vertex& v : scene.volume.vertices) planes.push_back(v.f);
+  std::sort(planes.begin(), planes.end());
+  planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
+  ASSERT_EQ(planes.size(), 7u);
+  // The last surface repeats the second's isovalue: its polygons meet every ray of the second's
+  // at the same distance with the same key, one layer for the peeling.
+  std::vector<render::IsoSurface> surfaces(4);
+  const float opacity[] = {0.4f, 0.6f, 0.5f, 0.3f};
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    surfaces[s].value = planes[2 * (s % 3) + 1];
+    surfaces[s].color = {0.2f + 0.3f * static_cast<float>(s), 0.5f, 0.8f};
+    surfaces[s].opacity = opacity[s];
+  }
+  for (const int max_layers : {1, 2, 3, render::kMaxLayers}) {
+    int index = 0;
+    for (const render::Camera& camera : standard_cameras(kSide, kSide)) {
+      render::TraceOptions options;
+      options.max_layers = max_layers;
+      render::LayerImage tiled, peeled;
+      render::trace_layers(tiled, scene.volume, scene.bvh, camera, surfaces, options);
+      options.packet = render::PacketSize::p16x16;
+      render::trace_layers(peeled, scene.volume, scene.bvh, camera, surfaces, options);
+      EXPECT_GT(peeled.color.fragments.size(), peeled.color.pixel_count() / 8);
+      EXPECT_TRUE(same_fragments(tiled.color, peeled.color))
+          << "max_layers " << max_layers << " camera " << index;
+      ++index;
+    }
+  }
 }
 
 // Peeling stops at an opaque layer and at max_layers, and layers are clipped like first hits.
