@@ -24,7 +24,9 @@ ProtocolStatus shadow_across_ranks(Framebuffer& image, std::vector<Framebuffer>&
         return mpi_failure("compositing a shadowing light's term", rc);
     }
   }
-  std::vector<float> depth(image.depth.begin(), image.depth.end());
+  // The writer's hit points that a shadowing light reaches; the others' is broadcast over it.
+  std::vector<float> depth = place.rank == writer ? shadow_ray_depths(image, terms)
+                                                  : std::vector<float>(image.depth.size());
   if (split) {
     if (const int rc = share_composited_depth(depth, writer, comm); rc != MPI_SUCCESS)
       return mpi_failure("sharing the composited depth", rc);

@@ -31,6 +31,14 @@ std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& 
                                             const TraceOptions& options,
                                             std::span<const float> depth);
 
+// The depths of the hit points whose shadow rays can change `image`: its depth where some
+// shadowing light's term (shadow_terms, as apply_shadows takes them) has a color, +infinity
+// elsewhere. Where every term is black (the lights do not reach the point, or light it in
+// black) apply_shadows removes nothing whether the point is occluded or not, so its rays are
+// left out: with the surface facing away from a light, about half the hit points.
+std::vector<float> shadow_ray_depths(const Framebuffer& image,
+                                     std::span<const Framebuffer> shadow_terms);
+
 // Removes from each pixel of `image` the part of its color each occluded light gave
 // (shadow_terms[j], written by trace_into with the same options and composited like the image).
 void apply_shadows(Framebuffer& image, std::span<const Framebuffer> shadow_terms,

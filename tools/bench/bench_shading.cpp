@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "bench_timing.hpp"
@@ -54,7 +55,8 @@ ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& c
   const auto shadowed_frame = [&] {
     return time_ms([&] {
       render::trace_into(image, volume, bvh, camera, surfaces, lit, nullptr, &terms);
-      occluded = render::trace_shadow_rays(volume, bvh, camera, surfaces, lit, image.depth);
+      occluded = render::trace_shadow_rays(volume, bvh, camera, surfaces, lit,
+                                           render::shadow_ray_depths(image, terms));
       render::apply_shadows(image, terms, occluded);
     });
   };
@@ -78,26 +80,35 @@ ShadingFigures measure_shading(const GyroidTwist& scene, const render::Camera& c
       kRepetitions,
       {frame(plain), std::function<double()>(shadowed_frame), frame(clipped), frame(smooth),
        std::function<double()>(gradients), std::function<double()>(step_update)});
-  ShadingFigures figures{best[0], best[1], best[2], best[3], best[4], best[5], 0};
-  std::size_t hits = 0, shadowed = 0;
+  ShadingFigures figures{best[0], best[1], best[2], best[3], best[4], best[5], 0, 0};
+  std::size_t hits = 0, reached = 0, shadowed = 0;
   shadowed_frame();
+  const std::vector<float> traced = render::shadow_ray_depths(image, terms);
   for (std::size_t p = 0; p < image.pixel_count(); ++p) {
-    hits += image.hit[p] != render::kNoHit;
-    shadowed += image.hit[p] != render::kNoHit && occluded[p] != 0;
+    if (image.hit[p] == render::kNoHit) continue;
+    ++hits;
+    reached += traced[p] < std::numeric_limits<float>::infinity();
+    shadowed += occluded[p] != 0;
   }
-  figures.shadowed_fraction = hits ? static_cast<double>(shadowed) / static_cast<double>(hits) : 0;
+  const auto share = [](std::size_t part, std::size_t whole) {
+    return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+  };
+  figures.reached_fraction = share(reached, hits);
+  figures.shadowed_fraction = share(shadowed, reached);
   return figures;
 }
 
 void print_shading(const ShadingFigures& f) {
   std::printf(
-      "  shading        plain %.1f ms; shadowing point light %.1f ms (%.2fx, %.0f%% of the hits "
-      "in shadow); clip box keeping half %.1f ms (%.2fx); smooth normals %.1f ms (%.2fx), their "
+      "  shading        plain %.1f ms; shadowing point light %.1f ms (%.2fx; it reaches %.0f%% of "
+      "the hits, %.0f%% of those in shadow); clip box keeping half %.1f ms (%.2fx); smooth normals "
+      "%.1f ms (%.2fx), their "
       "vertex gradients %.1f ms per update (%.2fx); the step's update %.1f ms, the smooth step "
       "%.2fx the flat one\n",
-      f.plain_ms, f.shadow_ms, f.shadow_ms / f.plain_ms, 100 * f.shadowed_fraction, f.clip_ms,
-      f.clip_ms / f.plain_ms, f.smooth_ms, f.smooth_ms / f.plain_ms, f.gradients_ms,
-      f.gradients_ms / f.plain_ms, f.update_ms, smooth_step_ratio(f));
+      f.plain_ms, f.shadow_ms, f.shadow_ms / f.plain_ms, 100 * f.reached_fraction,
+      100 * f.shadowed_fraction, f.clip_ms, f.clip_ms / f.plain_ms, f.smooth_ms,
+      f.smooth_ms / f.plain_ms, f.gradients_ms, f.gradients_ms / f.plain_ms, f.update_ms,
+      smooth_step_ratio(f));
 }
 
 double smooth_step_ratio(const ShadingFigures& f) {
@@ -109,6 +120,7 @@ Json::Value shading_json(const ShadingFigures& f) {
   json["plain_ms"] = number(f.plain_ms);
   json["shadow_point_light_ms"] = number(f.shadow_ms);
   json["shadow_point_light_ratio"] = number(f.shadow_ms / f.plain_ms);
+  json["reached_fraction"] = number(f.reached_fraction);
   json["shadowed_fraction"] = number(f.shadowed_fraction);
   json["clip_half_box_ms"] = number(f.clip_ms);
   json["clip_half_box_ratio"] = number(f.clip_ms / f.plain_ms);

@@ -20,7 +20,8 @@ struct ShadingFigures {
   double smooth_ms = 0;
   double gradients_ms = 0;       // the smooth frame's vertex gradients, once per update
   double update_ms = 0;          // a step's geometry and field update (refit), without them
-  double shadowed_fraction = 0;  // of the hit pixels, in the shadow of the point light
+  double reached_fraction = 0;   // of the hit pixels, those the point light reaches (rays traced)
+  double shadowed_fraction = 0;  // of those, in the shadow of the point light
 };
 
 // The default packets (render::TraceOptions), one rank.

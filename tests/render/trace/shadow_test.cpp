@@ -4,6 +4,7 @@
 // against its formula on a plane; and shadows removing exactly the shadowing light's term.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -211,6 +212,46 @@ TEST(Lights, EachHitTakesTheColorOfItsSurface) {
     }
   EXPECT_GT(hits_per_surface[0], 400u);
   EXPECT_GT(hits_per_surface[1], 200u);
+}
+
+// Shadow rays only from the hit points a shadowing light reaches (shadow_ray_depths): a light
+// behind part of the surface leaves those points black in its term, and the shadowed image is
+// the one of rays from every hit point, bit for bit, with fewer rays.
+TEST(Shadows, RaysOnlyWhereALightReachesGiveTheSameImage) {
+  const GyroidTwist data = gyroid(8);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  const auto surfaces = make_surfaces(std::vector<double>{0.0, 0.5});
+  const render::TraceOptions options = shadowing_lights();
+  int index = 0;
+  std::size_t hits = 0, left_out = 0;
+  for (const render::Camera& camera : standard_cameras(kSide, kSide)) {
+    render::Framebuffer image;
+    std::vector<render::Framebuffer> terms;
+    render::trace_into(image, scene.volume, scene.bvh, camera, surfaces, options, nullptr, &terms);
+    ASSERT_EQ(terms.size(), 2u);
+    const std::vector<float> reached = render::shadow_ray_depths(image, terms);
+    render::Framebuffer every = image, some = image;
+    render::apply_shadows(
+        every, terms,
+        render::trace_shadow_rays(scene.volume, scene.bvh, camera, surfaces, options, image.depth));
+    render::apply_shadows(
+        some, terms,
+        render::trace_shadow_rays(scene.volume, scene.bvh, camera, surfaces, options, reached));
+    EXPECT_EQ(image_difference(some, every), "") << "camera " << index++;
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+      if (image.hit[p] == render::kNoHit) continue;
+      ++hits;
+      const bool black = std::all_of(terms.begin(), terms.end(), [&](const auto& t) {
+        return t.rgba[4 * p] == 0 && t.rgba[4 * p + 1] == 0 && t.rgba[4 * p + 2] == 0;
+      });
+      EXPECT_EQ(reached[p] == image.depth[p], !black);
+      left_out += black;
+    }
+  }
+  // Seen from the cameras around the gyroid, many points face away from both lights (about half
+  // here), and many do not.
+  EXPECT_GT(left_out, hits / 10);
+  EXPECT_LT(left_out, hits - hits / 10);
 }
 
 // A headlight alone, listed or not, shades as docs/architecture.md §3 says, bit for bit.
