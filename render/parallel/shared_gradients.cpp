@@ -96,14 +96,15 @@ ProtocolStatus SharedGradients::compute(TetVolume& volume, std::span<const float
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  gradient_exponents(volume, exponents, tet_counts, flags);
+  const GradientPlan plan = plan_gradients(volume, flags);
+  gradient_exponents(volume, plan, exponents, tet_counts);
   const auto max = [&](auto values, std::size_t width) { return shared_.max(values, width); };
   const auto sum = [&](auto values, std::size_t width) { return shared_.sum(values, width); };
   int rc = combine_shared(volume, points_, exponents, max);
   if (rc != MPI_SUCCESS) return failed("exponents", rc);
   rc = combine_shared(volume, points_, tet_counts, sum);
   if (rc != MPI_SUCCESS) return failed("tet counts", rc);
-  gradient_sums(volume, exponents, tet_counts, sums, flags);
+  gradient_sums(volume, plan, exponents, tet_counts, sums);
   rc = combine_shared(volume, points_, sums, sum);
   if (rc != MPI_SUCCESS) return failed("sums", rc);
   gradients_from_sums(volume, exponents, sums, flags);

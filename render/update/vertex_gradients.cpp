@@ -109,47 +109,28 @@ bool adds_to_needed(std::span<const std::uint8_t> needed, const Tet& tet) {
           needed[static_cast<std::size_t>(tet.v[3])]) != 0;
 }
 
-// Where the pairs (vertex, tet's terms) of the vertices chunk c does not own start in one array
-// that holds every chunk's in chunk order, then their count. Counted first, so that the array is
-// allocated once, on huge pages: grown per chunk on 4 KiB pages, faulted in one by one, it was
-// most of the time of the gradients at 14M tets.
-std::vector<std::size_t> waiting_starts(const TetVolume& volume,
-                                        std::span<const std::int32_t> first,
-                                        std::span<const std::uint8_t> needed) {
-  const std::size_t chunks = first.size() - 1;
-  std::vector<std::size_t> start(chunks + 1, 0);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
-    std::size_t waiting = 0;
-    for (const Tet& tet : chunk_tets(volume, c)) {
-      if (!adds_to_needed(needed, tet)) continue;
-      for (const std::int32_t k : tet.v) waiting += k < first[c];
-    }
-    start[c + 1] = waiting;
-  });
-  for (std::size_t c = 1; c <= chunks; ++c) start[c] += start[c - 1];
-  return start;
-}
-
 // Calls add(k, prepare(terms)) for each tet's vertices k, for the tets that add to a needed
 // vertex: what depends on the tet alone is prepared once for its four vertices. In parallel over
-// contiguous chunks of tets, each owning a range of vertices (owned_vertex_starts): a chunk adds
-// to its own vertices at once and keeps the others' pairs, added after all chunks. The vertices
-// are numbered in the tets' first-use order, so few pairs wait; and the sums are exact, so the
-// order of the adds changes nothing.
+// the plan's chunks of tets, each owning a range of vertices: a chunk adds to its own vertices at
+// once and keeps the others' pairs, added after all chunks. The vertices are numbered in the
+// tets' first-use order, so few pairs wait; and the sums are exact, so the order of the adds
+// changes nothing.
 template <typename Prepare, typename Add>
-void for_each_tet_vertex(const TetVolume& volume, std::span<const std::uint8_t> needed,
-                         Prepare&& prepare, Add&& add) {
+void for_each_tet_vertex(const TetVolume& volume, const GradientPlan& plan, Prepare&& prepare,
+                         Add&& add) {
   using Prepared = decltype(prepare(TetTerms{}));
-  const std::vector<std::int32_t> first = owned_vertex_starts(volume);
-  const std::vector<std::size_t> waiting_start = waiting_starts(volume, first, needed);
-  LargeArray<std::pair<std::int32_t, Prepared>> waiting(waiting_start.back());
-  tbb::parallel_for(std::size_t{0}, first.size() - 1, [&](std::size_t c) {
-    auto* next_waiting = waiting.data() + waiting_start[c];
-    for (const Tet& tet : chunk_tets(volume, c)) {
-      if (!adds_to_needed(needed, tet)) continue;
+  LargeArray<std::pair<std::int32_t, Prepared>> waiting(plan.waiting_start.back());
+  tbb::parallel_for(std::size_t{0}, plan.first.size() - 1, [&](std::size_t c) {
+    auto* next_waiting = waiting.data() + plan.waiting_start[c];
+    const std::int32_t first = plan.first[c];
+    const std::span<const Tet> tets = chunk_tets(volume, c);
+    const std::uint8_t* adds = plan.adds.empty() ? nullptr : plan.adds.data() + c * kChunkTets;
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      if (adds && !adds[t]) continue;
+      const Tet& tet = tets[t];
       const Prepared prepared = prepare(tet_terms(volume, tet));
       for (const std::int32_t k : tet.v) {
-        if (k >= first[c]) {
+        if (k >= first) {
           add(k, prepared);
         } else {
           *next_waiting++ = {k, prepared};
@@ -187,13 +168,38 @@ std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
   return needed;
 }
 
-void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
-                        LargeArray<std::int32_t>& tet_counts,
-                        std::span<const std::uint8_t> needed) {
+GradientPlan plan_gradients(const TetVolume& volume, std::span<const std::uint8_t> needed) {
+  GradientPlan plan;
+  plan.first = owned_vertex_starts(volume);
+  const std::size_t chunks = plan.first.size() - 1;
+  if (!needed.empty()) plan.adds.resize(volume.tets.size());
+  // Where the pairs (vertex, tet's terms) of the vertices chunk c does not own start in one
+  // array that holds every chunk's in chunk order, then their count. Counted first, so that the
+  // array is allocated once, on huge pages: grown per chunk on 4 KiB pages, faulted in one by
+  // one, it was most of the time of the gradients at 14M tets.
+  plan.waiting_start.assign(chunks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::size_t waiting = 0;
+    const std::span<const Tet> tets = chunk_tets(volume, c);
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      const bool adds = adds_to_needed(needed, tets[t]);
+      if (!plan.adds.empty()) plan.adds[c * kChunkTets + t] = adds;
+      if (!adds) continue;
+      for (const std::int32_t k : tets[t].v) waiting += k < plan.first[c];
+    }
+    plan.waiting_start[c + 1] = waiting;
+  });
+  for (std::size_t c = 1; c <= chunks; ++c) plan.waiting_start[c] += plan.waiting_start[c - 1];
+  return plan;
+}
+
+void gradient_exponents(const TetVolume& volume, const GradientPlan& plan,
+                        LargeArray<VertexExponents>& exponents,
+                        LargeArray<std::int32_t>& tet_counts) {
   exponents.assign(volume.vertices.size(), {kNoTerm, kNoTerm, kNoTerm, kNoTerm});
   tet_counts.assign(volume.vertices.size(), 0);
   for_each_tet_vertex(
-      volume, needed,
+      volume, plan,
       [](const TetTerms& terms) {
         VertexExponents e;
         for (int c = 0; c < 4; ++c) e[c] = exponent_of(terms[c]);
@@ -205,9 +211,9 @@ void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& ex
       });
 }
 
-void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums,
-                   std::span<const std::uint8_t> needed) {
+void gradient_sums(const TetVolume& volume, const GradientPlan& plan,
+                   std::span<const VertexExponents> exponents,
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums) {
   LargeArray<Grid> grids(volume.vertices.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grids.size()), [&](const auto& block) {
     for (std::size_t k = block.begin(); k != block.end(); ++k) {
@@ -216,7 +222,7 @@ void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exp
   });
   sums.assign(volume.vertices.size(), {0, 0, 0, 0});
   for_each_tet_vertex(
-      volume, needed, [](const TetTerms& terms) { return terms; },
+      volume, plan, [](const TetTerms& terms) { return terms; },
       [&](std::int32_t k, const TetTerms& terms) {
         const Grid& grid = grids[k];
         for (int c = 0; c < 4; ++c) {
@@ -254,8 +260,9 @@ void compute_vertex_gradients(TetVolume& volume, std::span<const float> isovalue
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  gradient_exponents(volume, exponents, tet_counts, flags);
-  gradient_sums(volume, exponents, tet_counts, sums, flags);
+  const GradientPlan plan = plan_gradients(volume, flags);
+  gradient_exponents(volume, plan, exponents, tet_counts);
+  gradient_sums(volume, plan, exponents, tet_counts, sums);
   gradients_from_sums(volume, exponents, sums, flags);
 }
 

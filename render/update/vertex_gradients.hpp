@@ -75,16 +75,26 @@ inline constexpr int kLeastExponent = -1021;
 std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
                                                std::span<const float> isovalues);
 
+// How both passes split the work: contiguous chunks of tets, the range of vertices each chunk
+// owns (it adds to those at once), where its pairs for other chunks' vertices start in one array
+// (added after all chunks), and which tets add to a needed vertex. Made once per update.
+struct GradientPlan {
+  std::vector<std::int32_t> first;         // per chunk its first owned vertex, then one past all
+  std::vector<std::size_t> waiting_start;  // per chunk where its pairs start, then their total
+  std::vector<std::uint8_t> adds;          // per tet, 1 when it adds to a needed one; empty: all
+};
+GradientPlan plan_gradients(const TetVolume& volume, std::span<const std::uint8_t> needed = {});
+
 // Pass 1: `exponents` and `tet_counts` get one entry per vertex, from this rank's tets.
-void gradient_exponents(const TetVolume& volume, LargeArray<VertexExponents>& exponents,
-                        LargeArray<std::int32_t>& tet_counts,
-                        std::span<const std::uint8_t> needed = {});
+void gradient_exponents(const TetVolume& volume, const GradientPlan& plan,
+                        LargeArray<VertexExponents>& exponents,
+                        LargeArray<std::int32_t>& tet_counts);
 
 // Pass 2: `sums` gets one entry per vertex, this rank's tets' terms on the grids that
 // `exponents` and `tet_counts` (over all ranks) set.
-void gradient_sums(const TetVolume& volume, std::span<const VertexExponents> exponents,
-                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums,
-                   std::span<const std::uint8_t> needed = {});
+void gradient_sums(const TetVolume& volume, const GradientPlan& plan,
+                   std::span<const VertexExponents> exponents,
+                   std::span<const std::int32_t> tet_counts, LargeArray<VertexSums>& sums);
 
 // Fills volume.gradients from the sums: the gradient sum over the |det| sum (zero for a vertex
 // of flat tets only, or one `needed` does not flag).

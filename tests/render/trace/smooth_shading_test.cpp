@@ -72,15 +72,15 @@ Sums sums_of_two_parts(const render::TetVolume& volume, std::size_t split) {
   second.tets.erase(second.tets.begin(), second.tets.begin() + static_cast<std::ptrdiff_t>(split));
   render::LargeArray<render::VertexExponents> e1, e2;
   render::LargeArray<std::int32_t> n1, n2;
-  render::gradient_exponents(first, e1, n1);
-  render::gradient_exponents(second, e2, n2);
+  render::gradient_exponents(first, render::plan_gradients(first), e1, n1);
+  render::gradient_exponents(second, render::plan_gradients(second), e2, n2);
   for (std::size_t k = 0; k < e1.size(); ++k) {
     for (int c = 0; c < 4; ++c) e1[k][c] = std::max(e1[k][c], e2[k][c]);
     n1[k] += n2[k];
   }
   render::LargeArray<render::VertexSums> s1, s2;
-  render::gradient_sums(first, e1, n1, s1);
-  render::gradient_sums(second, e1, n1, s2);
+  render::gradient_sums(first, render::plan_gradients(first), e1, n1, s1);
+  render::gradient_sums(second, render::plan_gradients(second), e1, n1, s2);
   for (std::size_t k = 0; k < s1.size(); ++k)
     for (int c = 0; c < 4; ++c) s1[k][c] += s2[k][c];
   return {e1, s1};
