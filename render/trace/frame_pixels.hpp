@@ -92,50 +92,12 @@ void write_rows(const Frame& f, int x0, int y0, Framebuffer& image, Compose&& co
   simd::stream_fence();
 }
 
-// Several lights: the light factor of every ray, and each shadowing light's part of the color
-// into its own image (shadow_terms), with the pixel's depth and key.
-template <int S>
-void light_packet(const Frame& f, const RayPacket<S>& packet, const RayHits& hits, int x0, int y0,
-                  const float* depth, float* light) {
-  constexpr int n = RayPacket<S>::kRays;
-  alignas(64) float factor[kMaxLights][n];
-  float* factors[kMaxLights];
-  for (int k = 0; k < kMaxLights; ++k) factors[k] = factor[k];
-  light_terms(f.shade, f.lights, hits, packet.eye, light, factors);
-  if (f.shadow_terms == nullptr) return;
-  const int columns = std::min(S, f.camera.width - x0);
-  for (std::size_t j = 0; j < f.shadow_terms->size(); ++j) {
-    Framebuffer& term = (*f.shadow_terms)[j];
-    for (int row = 0; row < S && y0 + row < f.camera.height; ++row)
-      for (int c = 0; c < columns; ++c) {
-        const int r = RayPacket<S>::index(row, c);
-        const std::size_t p = term.index(x0 + c, y0 + row);
-        float* rgba = &term.rgba[4 * p];
-        if (packet.tet[r] < 0) {
-          std::fill_n(rgba, 4, 0.0f);
-          term.depth[p] = std::numeric_limits<float>::infinity();
-          term.hit[p] = kNoHit;
-          continue;
-        }
-        shade_color(f.shade, {packet.dx[r], packet.dy[r], packet.dz[r]}, packet.tmax[r],
-                    packet.tet[r], packet.iso[r], factor[j][r], rgba);
-        term.depth[p] = depth[r];
-        term.hit[p] = packet.key[r];
-      }
-  }
-}
-
-// Writes the packet's pixels: the background, or the shaded hit.
+// Composes the packet's pixels into `image` with the rays' light factors `light` and view depths
+// `depth`: the background, or the hit shaded. The image takes it with `light` the rays' whole
+// light, a shadowing light's term (shadow_terms) with that light's part.
 template <int S, bool kStats>
-void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
-                  TraceStats& stats) {
-  constexpr int n = RayPacket<S>::kRays;
-  alignas(64) float light[n], depth[n];
-  const RayHits hits{packet.dx, packet.dy, packet.dz,   packet.nx,
-                     packet.ny, packet.nz, packet.tmax, n};
-  if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
-  light_and_depth(f.shade, hits, light, depth);
-  if (f.lit) light_packet<S>(f, packet, hits, x0, y0, depth, light);
+void compose_pixels(const Frame& f, const RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
+                    const float* light, const float* depth, TraceStats& stats) {
   alignas(16) static constexpr float kAlphaLane[4] = {0, 0, 0, 1};
   const simd::Mask4 alpha = simd::Float4::load_aligned(kAlphaLane) != simd::Float4(0.0f);
   // Each row is composed a block of columns at a time (their rays lie side by side in the
@@ -180,6 +142,31 @@ void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuf
       }
     });
   }
+}
+
+// Writes the packet's pixels: the background, or the shaded hit; with several lights, also each
+// shadowing light's part of the color into its own image (shadow_terms), with the pixel's depth
+// and key, composed as the image is (a pixel at a time, they were a third of a lit frame's cost).
+template <int S, bool kStats>
+void write_pixels(const Frame& f, RayPacket<S>& packet, int x0, int y0, Framebuffer& image,
+                  TraceStats& stats) {
+  constexpr int n = RayPacket<S>::kRays;
+  alignas(64) float light[n], depth[n];
+  alignas(64) float factor[kMaxLights][n];
+  const RayHits hits{packet.dx, packet.dy, packet.dz,   packet.nx,
+                     packet.ny, packet.nz, packet.tmax, n};
+  if (f.smooth) interpolate_normals(f.shade, hits, packet.tet, packet.nx, packet.ny, packet.nz);
+  light_and_depth(f.shade, hits, light, depth);
+  if (f.lit) {
+    float* factors[kMaxLights];
+    for (int k = 0; k < kMaxLights; ++k) factors[k] = factor[k];
+    light_terms(f.shade, f.lights, hits, packet.eye, light, factors);
+  }
+  compose_pixels<S, kStats>(f, packet, x0, y0, image, light, depth, stats);
+  if (!f.lit || f.shadow_terms == nullptr) return;
+  TraceStats uncounted;  // the image's pixels counted once
+  for (std::size_t j = 0; j < f.shadow_terms->size(); ++j)
+    compose_pixels<S, false>(f, packet, x0, y0, (*f.shadow_terms)[j], factor[j], depth, uncounted);
 }
 
 // A packet whose frustum misses the whole volume: background, without setting up its rays.
