@@ -36,7 +36,10 @@ ProtocolStatus shadow_layers(FragmentImage& merged, const std::vector<FragmentIm
   std::vector<float> depth(pixels);
   ProtocolStatus traced = ProtocolStatus::success();
   for (int layer = 0; layer < layers; ++layer) {
-    if (is_writer) layer_view_depths(merged, scene.camera, layer, depth);
+    if (is_writer) {
+      layer_view_depths(merged, scene.camera, layer, depth);
+      keep_lit_layer_points(terms, layer, depth);
+    }
     if (const int rc = share_composited_depth(depth, writer, comm); rc != MPI_SUCCESS)
       return mpi_failure("sharing a layer's depth", rc);
     std::vector<std::uint8_t> occluded;

@@ -18,6 +18,12 @@ namespace tetray::render {
 void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> shadow_terms,
                          int layer, std::span<const std::uint8_t> occluded);
 
+// Leaves out of layer `layer`'s shadow rays (its view depths, layer_view_depths) the pixels whose
+// every shadowing light's term of that layer is black: apply_layer_shadows removes nothing there,
+// occluded or not (shadow_ray_depths does the same for a first hit).
+void keep_lit_layer_points(std::span<const FragmentImage> shadow_terms, int layer,
+                           std::span<float> depth);
+
 // The blended image of the layers (sorted and kept as the fragment merge keeps them), with the
 // first layer's view depth and key, into `image` (its storage reused).
 void flatten_layers(FragmentImage& layers, const Camera& camera, Framebuffer& image);

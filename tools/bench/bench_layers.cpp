@@ -43,6 +43,7 @@ void layered_frame(const render::TetVolume& volume, const render::Bvh& bvh,
   std::vector<float> depth(layers.color.pixel_count());
   for (int layer = 0; !layers.shadow_terms.empty() && layer < options.max_layers; ++layer) {
     render::layer_view_depths(layers.color, camera, layer, depth);
+    render::keep_lit_layer_points(layers.shadow_terms, layer, depth);
     const std::vector<std::uint8_t> occluded =
         render::trace_shadow_rays(volume, bvh, camera, surfaces, options, depth);
     render::apply_layer_shadows(layers.color, layers.shadow_terms, layer, occluded);

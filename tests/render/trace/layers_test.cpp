@@ -9,9 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "render/trace/layer_shading.hpp"
+#include "render/trace/shadow_rays.hpp"
 #include "support/reference_comparison.hpp"
 #include "support/render_fixtures.hpp"
 
@@ -143,8 +146,9 @@ TEST(Layers, TransparentSurfacesAgreeWithTheReference) {
 }
 
 // Surfaces lying exactly in the mesh's faces: a ray meets the polygons of several tets at one
-// distance, told apart only by their keys, and two surfaces at one isovalue. The tiles keep each ray's nearest layers from one test
-// of their bins and the packets peel them layer by layer; they agree bitwise, ties included.
+// distance, told apart only by their keys, and two surfaces at one isovalue. The tiles keep each
+// ray's nearest layers from one test of their bins and the packets peel them layer by layer; they
+// agree bitwise, ties included.
 TEST(Layers, TiesInFacesTheTilesKeepAsThePacketsPeel) {
   const BoxMesh box = jittered_box(6, 0.0);
   const auto f = sample_field(box.points, [](Vec3d p) { return p.x; });
@@ -190,6 +194,51 @@ TEST(Layers, StopAtAnOpaqueLayerAndAtMaxLayersWithClipping) {
   clip.box_lo = {-1.2, -1.2, -1.2};
   clip.box_hi = {0.05, 1.2, 1.2};
   expect_layers_agree(isovalues, opacity, 3, clip, "opaque and clipped");
+}
+
+// A layer's shadow rays only from the points a shadowing light reaches (keep_lit_layer_points):
+// the shadowed layers are those of rays from every layer's points, bit for bit, with fewer rays.
+TEST(Layers, ShadowRaysOnlyWhereALightReachesGiveTheSameLayers) {
+  const GyroidTwist data = gyroid(8);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  const double isovalues[] = {-0.5, 0.0, 0.5};
+  std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
+  for (render::IsoSurface& s : surfaces) s.opacity = 0.5f;
+  render::TraceOptions options;
+  options.lights.count = 3;
+  options.lights.light[0] = {render::LightKind::headlight, {}, false};
+  options.lights.light[1] = {render::LightKind::point, {1.6, 2.4, 0.9}, true};
+  options.lights.light[2] = {render::LightKind::directional, {-0.3, -1.0, -0.6}, true};
+  std::size_t every_points = 0, lit_points = 0;  // shadow rays traced per light
+  const auto count = [](const std::vector<float>& depth) {
+    return static_cast<std::size_t>(std::count_if(depth.begin(), depth.end(), [](float d) {
+      return d < std::numeric_limits<float>::infinity();
+    }));
+  };
+  int index = 0;
+  for (const render::Camera& camera : standard_cameras(kSide, kSide)) {
+    render::LayerImage every, lit;
+    render::trace_layers(every, scene.volume, scene.bvh, camera, surfaces, options);
+    render::trace_layers(lit, scene.volume, scene.bvh, camera, surfaces, options);
+    std::vector<float> depth(every.color.pixel_count());
+    for (int layer = 0; layer < options.max_layers; ++layer) {
+      render::layer_view_depths(every.color, camera, layer, depth);
+      render::apply_layer_shadows(
+          every.color, every.shadow_terms, layer,
+          render::trace_shadow_rays(scene.volume, scene.bvh, camera, surfaces, options, depth));
+      every_points += count(depth);
+      render::layer_view_depths(lit.color, camera, layer, depth);
+      render::keep_lit_layer_points(lit.shadow_terms, layer, depth);
+      lit_points += count(depth);
+      render::apply_layer_shadows(
+          lit.color, lit.shadow_terms, layer,
+          render::trace_shadow_rays(scene.volume, scene.bvh, camera, surfaces, options, depth));
+    }
+    EXPECT_TRUE(same_fragments(lit.color, every.color)) << "camera " << index++;
+  }
+  // Some points face away from both lights, many do not.
+  EXPECT_LT(lit_points, every_points - every_points / 20);
+  EXPECT_GT(lit_points, every_points / 10);
 }
 
 // One LayerImage traced into frame after frame (its slots kept, as in situ) holds what a fresh
