@@ -132,60 +132,57 @@ void study_volume_rendering(const BenchOptions& options) {
   write_dvr_study_csv(study, options.dvr_study_path);
 }
 
-// The volume-rendering figures alone (bench_volume.hpp), per size.
-void measure_volume_only(const BenchOptions& options) {
+// One block of figures alone, per size: the header, then measure(scene, camera) for each size in
+// one arena, its JSON object (with "n") appended under `key`.
+template <typename Measure>
+void measure_each_size(const BenchOptions& options, const char* key, Measure&& measure) {
   tbb::task_arena arena(options.threads);
-  const MachineInfo machine = describe_machine();
-  print_header(machine, options.threads, options.size_px);
+  print_header(describe_machine(), options.threads, options.size_px);
   Json::Value json;
   for (const int n : options.sizes) {
     arena.execute([&] {
       const GyroidTwist scene = make_gyroid_twist(n, 0.0);
       std::printf("\n== gyroid-twist n = %d: %zu tets ==\n", n, scene.mesh.tet_count());
-      const VolumeFigures figures =
-          measure_volume(scene, bench_camera(options.size_px), options.threads);
-      print_volume(figures);
-      Json::Value size = volume_json(figures);
+      Json::Value size = measure(scene, bench_camera(options.size_px));
       size["n"] = n;
-      json["volume"].append(size);
+      json[key].append(size);
+      std::fflush(stdout);
     });
   }
   if (!options.json_path.empty()) write_json_file(json, options.json_path);
 }
 
+// The volume-rendering figures alone (bench_volume.hpp), per size.
+void measure_volume_only(const BenchOptions& options) {
+  measure_each_size(options, "volume", [&](const GyroidTwist& scene, const render::Camera& camera) {
+    const VolumeFigures figures = measure_volume(scene, camera, options.threads);
+    print_volume(figures);
+    return volume_json(figures);
+  });
+}
+
 // The shading, transparency and cap figures alone, per size, with their targets: the quick run
 // for work on one of these modalities.
 void measure_modalities_only(const BenchOptions& options) {
-  tbb::task_arena arena(options.threads);
-  const MachineInfo machine = describe_machine();
-  print_header(machine, options.threads, options.size_px);
-  Json::Value json;
-  for (const int n : options.sizes) {
-    arena.execute([&] {
-      const GyroidTwist scene = make_gyroid_twist(n, 0.0);
-      const render::Camera camera = bench_camera(options.size_px);
-      std::printf("\n== gyroid-twist n = %d: %zu tets ==\n", n, scene.mesh.tet_count());
-      const ShadingFigures shading = measure_shading(scene, camera);
-      print_shading(shading);
-      const LayerFigures layers = measure_layers(scene, camera);
-      print_layers(layers);
-      const CapFigures cap = measure_cap(scene, camera);
-      print_cap(cap);
-      Json::Value size;
-      size["n"] = n;
-      size["shading"] = shading_json(shading);
-      size["layers"] = layers_json(layers);
-      size["cap"] = cap_json(cap);
-      std::printf("  targets\n");
-      for (const TargetCheck& check : check_modality_targets(shading, layers, cap)) {
-        print_target(check);
-        size["targets"].append(target_json(check));
-      }
-      json["modalities"].append(size);
-      std::fflush(stdout);
-    });
-  }
-  if (!options.json_path.empty()) write_json_file(json, options.json_path);
+  measure_each_size(
+      options, "modalities", [](const GyroidTwist& scene, const render::Camera& camera) {
+        const ShadingFigures shading = measure_shading(scene, camera);
+        print_shading(shading);
+        const LayerFigures layers = measure_layers(scene, camera);
+        print_layers(layers);
+        const CapFigures cap = measure_cap(scene, camera);
+        print_cap(cap);
+        Json::Value size;
+        size["shading"] = shading_json(shading);
+        size["layers"] = layers_json(layers);
+        size["cap"] = cap_json(cap);
+        std::printf("  targets\n");
+        for (const TargetCheck& check : check_modality_targets(shading, layers, cap)) {
+          print_target(check);
+          size["targets"].append(target_json(check));
+        }
+        return size;
+      });
 }
 
 }  // namespace

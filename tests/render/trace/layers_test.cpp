@@ -139,6 +139,19 @@ void expect_layers_agree(std::span<const double> isovalues, std::span<const floa
   EXPECT_GT(peeled, compared / 10) << label << ": too few pixels with more than one layer";
 }
 
+// The gyroid with three surfaces at opacity 0.5.
+struct HalfTransparentGyroid {
+  GyroidTwist data = gyroid(8);
+  RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  std::vector<render::IsoSurface> surfaces = half_transparent({-0.5, 0.0, 0.5});
+
+  static std::vector<render::IsoSurface> half_transparent(std::vector<double> isovalues) {
+    std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
+    for (render::IsoSurface& s : surfaces) s.opacity = 0.5f;
+    return surfaces;
+  }
+};
+
 TEST(Layers, TransparentSurfacesAgreeWithTheReference) {
   const double isovalues[] = {-0.5, 0.0, 0.5};
   const float opacity[] = {0.3f, 0.5f, 0.7f};
@@ -199,11 +212,9 @@ TEST(Layers, StopAtAnOpaqueLayerAndAtMaxLayersWithClipping) {
 // A layer's shadow rays only from the points a shadowing light reaches (keep_lit_layer_points):
 // the shadowed layers are those of rays from every layer's points, bit for bit, with fewer rays.
 TEST(Layers, ShadowRaysOnlyWhereALightReachesGiveTheSameLayers) {
-  const GyroidTwist data = gyroid(8);
-  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
-  const double isovalues[] = {-0.5, 0.0, 0.5};
-  std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
-  for (render::IsoSurface& s : surfaces) s.opacity = 0.5f;
+  const HalfTransparentGyroid g;
+  const RenderScene& scene = g.scene;
+  const std::vector<render::IsoSurface>& surfaces = g.surfaces;
   render::TraceOptions options;
   options.lights.count = 3;
   options.lights.light[0] = {render::LightKind::headlight, {}, false};
@@ -245,11 +256,9 @@ TEST(Layers, ShadowRaysOnlyWhereALightReachesGiveTheSameLayers) {
 // one holds, whatever the frames before it left there: more or fewer pixels, layers per pixel
 // and shadowing lights.
 TEST(Layers, AReusedImageHoldsWhatAFreshOneHolds) {
-  const GyroidTwist data = gyroid(8);
-  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
-  const double isovalues[] = {-0.5, 0.0, 0.5};
-  std::vector<render::IsoSurface> surfaces = make_surfaces(isovalues);
-  for (render::IsoSurface& s : surfaces) s.opacity = 0.5f;
+  const HalfTransparentGyroid g;
+  const RenderScene& scene = g.scene;
+  const std::vector<render::IsoSurface>& surfaces = g.surfaces;
   struct FrameSetup {
     int side, max_layers, shadowing;
   };
