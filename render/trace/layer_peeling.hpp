@@ -1,6 +1,7 @@
 // Depth peeling (trace_layers; Wald et al. 2007, §8.5, docs/architecture.md §7): the layers of
-// a packet's rays written to fixed slots, and the loop that traces them one after the other,
-// shared by the packets of trace.cpp and of the tiles (tile_trace.cpp).
+// a packet's rays written to fixed slots (write_layer, which the tiles' nearest layers use too,
+// nearest_layers.hpp), and the loop that traces them one after the other for the packets of
+// trace.cpp.
 #pragma once
 
 #include <algorithm>
