@@ -108,14 +108,19 @@ class NearestLayers {
   // them (laid out per layer across the packet, their rows 4 KiB apart, the stores of one
   // insertion met in the same cache sets, and the frame was no faster than peeling).
   struct Slot {
-    alignas(64) float t[W];  // kNone past the ray's hits
-    alignas(64) std::int32_t key[W];
-    alignas(64) std::int32_t tet[W];
-    alignas(64) std::int32_t iso[W];
-    alignas(64) float nx[W];
-    alignas(64) float ny[W];
-    alignas(64) float nz[W];
+    static constexpr std::size_t kBatchBytes = sizeof(float) * W;  // a lane batch, aligned
+    alignas(kBatchBytes) float t[W];                               // kNone past the ray's hits
+    alignas(kBatchBytes) std::int32_t key[W];
+    alignas(kBatchBytes) std::int32_t tet[W];
+    alignas(kBatchBytes) std::int32_t iso[W];
+    alignas(kBatchBytes) float nx[W];
+    alignas(kBatchBytes) float ny[W];
+    alignas(kBatchBytes) float nz[W];
   };
+
+  // No padding: the slots hold 28 bytes per ray and layer, 458,752 bytes for a packet of 32 x 32
+  // at kMaxLayers, whatever the lane width.
+  static_assert(sizeof(Slot) == 7 * Slot::kBatchBytes);
 
   int layers_ = 0;
   Slot slots_[Packet::kBatches][kMaxLayers];
