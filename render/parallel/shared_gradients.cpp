@@ -90,13 +90,12 @@ ProtocolStatus SharedGradients::match(const TetVolume& volume, const PointSource
 
 ProtocolStatus SharedGradients::compute(TetVolume& volume, std::span<const float> isovalues) const {
   std::vector<std::uint8_t> needed = vertices_of_surfaces(volume, isovalues);
-  for (std::uint32_t p : points_) needed[vertex_of(volume, p)] = 1;
-  const std::span<const std::uint8_t> flags =
-      isovalues.empty() ? std::span<const std::uint8_t>{} : std::span(needed);
+  if (!needed.empty())
+    for (std::uint32_t p : points_) needed[vertex_of(volume, p)] = 1;
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  const GradientPlan plan = plan_gradients(volume, flags);
+  const GradientPlan plan = plan_gradients(volume, needed);
   gradient_exponents(volume, plan, exponents, tet_counts);
   const auto max = [&](auto values, std::size_t width) { return shared_.max(values, width); };
   const auto sum = [&](auto values, std::size_t width) { return shared_.sum(values, width); };
@@ -107,7 +106,7 @@ ProtocolStatus SharedGradients::compute(TetVolume& volume, std::span<const float
   gradient_sums(volume, plan, exponents, tet_counts, sums);
   rc = combine_shared(volume, points_, sums, sum);
   if (rc != MPI_SUCCESS) return failed("sums", rc);
-  gradients_from_sums(volume, exponents, sums, flags);
+  gradients_from_sums(volume, exponents, sums, needed);
   return ProtocolStatus::success();
 }
 

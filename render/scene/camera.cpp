@@ -68,14 +68,22 @@ CameraFrame make_frame(const Camera& camera) {
   return frame_of(fallback);
 }
 
+double column_slope(const CameraFrame& frame, double px, int width) {
+  return (2.0 * px / width - 1.0) * frame.scale_x;
+}
+
+double row_slope(const CameraFrame& frame, double py, int height) {
+  return (1.0 - 2.0 * py / height) * frame.scale_y;
+}
+
 namespace {
 
 Vec3d column_term(const CameraFrame& frame, double px, int width) {
-  return frame.forward + ((2.0 * px / width - 1.0) * frame.scale_x) * frame.right;
+  return frame.forward + column_slope(frame, px, width) * frame.right;
 }
 
 Vec3d row_term(const CameraFrame& frame, double py, int height) {
-  return ((1.0 - 2.0 * py / height) * frame.scale_y) * frame.up;
+  return row_slope(frame, py, height) * frame.up;
 }
 
 }  // namespace

@@ -49,6 +49,11 @@ std::string camera_problem(const Camera& camera);
 // default Camera{} with the same image size.
 CameraFrame make_frame(const Camera& camera);
 
+// The ray through image coordinates (px, py) runs along forward + column_slope right + row_slope
+// up (direction_at).
+double column_slope(const CameraFrame& frame, double px, int width);
+double row_slope(const CameraFrame& frame, double py, int height);
+
 // Normalized ray direction through the center of pixel (i, j), in double precision.
 Vec3d pixel_direction(const CameraFrame& frame, const Camera& camera, int i, int j);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "render/trace/shadow_rays.hpp"
 #include "render/trace/trace.hpp"
 
 namespace tetray::render {
@@ -23,7 +24,6 @@ void apply_layer_shadows(FragmentImage& color, std::span<const FragmentImage> sh
   });
 }
 
-// resolve() pixel by pixel in parallel: a megapixel of layers takes a while to sort and blend.
 void keep_lit_layer_points(std::span<const FragmentImage> shadow_terms, int layer,
                            std::span<float> depth) {
   if (shadow_terms.empty()) return;
@@ -32,13 +32,13 @@ void keep_lit_layer_points(std::span<const FragmentImage> shadow_terms, int laye
     if (first.begin[p + 1] - first.begin[p] <= std::uint32_t(layer)) return;
     const std::size_t f = first.begin[p] + static_cast<std::size_t>(layer);
     const bool lit = std::any_of(shadow_terms.begin(), shadow_terms.end(), [&](const auto& t) {
-      const float* rgba = t.fragments[f].rgba;
-      return rgba[0] != 0 || rgba[1] != 0 || rgba[2] != 0;
+      return term_has_color(t.fragments[f].rgba);
     });
     if (!lit) depth[p] = std::numeric_limits<float>::infinity();
   });
 }
 
+// resolve() pixel by pixel in parallel: a megapixel of layers takes a while to sort and blend.
 void flatten_layers(FragmentImage& layers, const Camera& camera, Framebuffer& image) {
   // Every pixel is written below, so an image of the right size is reused as it is (allocating
   // a megapixel image each frame cost a third of the blend).

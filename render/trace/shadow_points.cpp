@@ -20,9 +20,8 @@ std::vector<float> shadow_ray_depths(const Framebuffer& image,
   std::vector<float> depth(image.pixel_count(), kInf);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, depth.size()), [&](const auto& pixels) {
     for (std::size_t p = pixels.begin(); p != pixels.end(); ++p) {
-      const bool lit = std::any_of(shadow_terms.begin(), shadow_terms.end(), [&](const auto& t) {
-        return t.rgba[4 * p] != 0 || t.rgba[4 * p + 1] != 0 || t.rgba[4 * p + 2] != 0;
-      });
+      const bool lit = std::any_of(shadow_terms.begin(), shadow_terms.end(),
+                                   [&](const auto& t) { return term_has_color(&t.rgba[4 * p]); });
       if (lit) depth[p] = image.depth[p];
     }
   });

@@ -31,6 +31,12 @@ std::vector<std::uint8_t> trace_shadow_rays(const TetVolume& volume, const Bvh& 
                                             const TraceOptions& options,
                                             std::span<const float> depth);
 
+// Whether a shadowing light's term (premultiplied RGBA) gives its pixel or layer any color: where
+// none does, removing the terms changes nothing, occluded or not.
+inline bool term_has_color(const float* rgba) {
+  return rgba[0] != 0 || rgba[1] != 0 || rgba[2] != 0;
+}
+
 // The depths of the hit points whose shadow rays can change `image`: its depth where some
 // shadowing light's term (shadow_terms, as apply_shadows takes them) has a color, +infinity
 // elsewhere. Where every term is black (the lights do not reach the point, or light it in

@@ -330,11 +330,11 @@ void layer_view_depths(const FragmentImage& layers, const Camera& camera, int la
   const CameraFrame view = make_frame(camera);
   std::vector<double> across(static_cast<std::size_t>(camera.width));
   for (int i = 0; i < camera.width; ++i) {
-    const double a = (2.0 * (i + 0.5) / camera.width - 1.0) * view.scale_x;
+    const double a = column_slope(view, i + 0.5, camera.width);
     across[static_cast<std::size_t>(i)] = a * a;
   }
   tbb::parallel_for(0, camera.height, [&](int j) {
-    const double b = (1.0 - 2.0 * (j + 0.5) / camera.height) * view.scale_y;
+    const double b = row_slope(view, j + 0.5, camera.height);
     const double up = 1.0 + b * b;
     for (int i = 0; i < camera.width; ++i) {
       const std::size_t p = static_cast<std::size_t>(j) * camera.width + i;

@@ -145,8 +145,8 @@ void for_each_tet_vertex(const TetVolume& volume, const GradientPlan& plan, Prep
 
 std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
                                                std::span<const float> isovalues) {
+  if (isovalues.empty()) return {};  // every vertex
   std::vector<std::uint8_t> needed(volume.vertices.size(), 0);
-  if (isovalues.empty()) return needed;
   // Corners of neighbouring tets are written by different threads: each flag is set, never
   // cleared, and to the same value, through an atomic reference (no tear, no race).
   tbb::parallel_for(std::size_t{0}, chunk_count(volume), [&](std::size_t c) {
@@ -255,15 +255,13 @@ void gradients_from_sums(TetVolume& volume, std::span<const VertexExponents> exp
 
 void compute_vertex_gradients(TetVolume& volume, std::span<const float> isovalues) {
   const std::vector<std::uint8_t> needed = vertices_of_surfaces(volume, isovalues);
-  const std::span<const std::uint8_t> flags =
-      isovalues.empty() ? std::span<const std::uint8_t>{} : std::span(needed);
   LargeArray<VertexExponents> exponents;
   LargeArray<std::int32_t> tet_counts;
   LargeArray<VertexSums> sums;
-  const GradientPlan plan = plan_gradients(volume, flags);
+  const GradientPlan plan = plan_gradients(volume, needed);
   gradient_exponents(volume, plan, exponents, tet_counts);
   gradient_sums(volume, plan, exponents, tet_counts, sums);
-  gradients_from_sums(volume, exponents, sums, flags);
+  gradients_from_sums(volume, exponents, sums, needed);
 }
 
 }  // namespace tetray::render

@@ -70,8 +70,9 @@ inline constexpr int kLeastExponent = -1021;
 // the vertices are flagged).
 
 // Flags the corners of the tets that straddle one of `isovalues` (ascending), by the tracer's
-// test: some isovalue in (the tet's least value, its largest]. On several ranks the caller also
-// flags the vertices other ranks share (their sums must hold every rank's tets).
+// test: some isovalue in (the tet's least value, its largest]; no flags (every vertex) for no
+// isovalues. On several ranks the caller also flags the vertices other ranks share (their sums
+// must hold every rank's tets).
 std::vector<std::uint8_t> vertices_of_surfaces(const TetVolume& volume,
                                                std::span<const float> isovalues);
 
