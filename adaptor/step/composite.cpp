@@ -97,8 +97,8 @@ Status Adaptor::Impl::composite_view(SceneState& s, std::size_t k, std::size_t v
   if (comm_.size > 1) {
     const PhaseClock::Phase phase(clock_, s.view_times[v].composite_ms);
     const int rc = s.config.volume
-                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image,
-                                                     nullptr, &s.merged_fragments[v])
+                       ? render::composite_fragments(s.fragments[v], comm_.comm, writer, image, {},
+                                                     nullptr, &s.fragment_workspaces[v])
                        : render::composite(image, comm_.comm,
                                            {.root = writer, .active_hint = active_hint(s, k, v)},
                                            nullptr, &composite_workspace_);

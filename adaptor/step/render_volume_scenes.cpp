@@ -26,7 +26,7 @@ void Adaptor::Impl::render_volume_scene(SceneState& s, std::size_t k,
       options.surface_field = s.surface_field;
     }
     s.fragments.resize(s.views.size());
-    s.merged_fragments.resize(s.views.size());
+    s.fragment_workspaces.resize(s.views.size());
     s.images.resize(s.views.size());
   }
   for (std::size_t v = 0; v < s.views.size(); ++v) {

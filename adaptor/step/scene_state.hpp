@@ -11,6 +11,7 @@
 #include "adaptor/config/config.hpp"
 #include "adaptor/output/step_record.hpp"
 #include "adaptor/step/trigger.hpp"
+#include "render/composite/fragment_composite.hpp"
 #include "render/core/fragments.hpp"
 #include "render/core/framebuffer.hpp"
 #include "render/parallel/global_reduce.hpp"
@@ -43,9 +44,9 @@ struct SceneState {
   std::vector<ViewTimes> view_times;           // per view, zeroed at each due step
   std::vector<render::VolumeFragmentImage> fragments;  // a volume scene's per view, before
                                                        // compositing
-  // Per view, the writer's merged fragments: a volume scene's, a transparent scene's layers;
-  // kept from frame to frame so that their storage is reused.
-  std::vector<render::VolumeFragmentImage> merged_fragments;
+  // Per view, a volume scene's fragment compositing buffers, kept from frame to frame so that
+  // their storage is reused.
+  std::vector<render::FragmentWorkspace<render::VolumeFragment>> fragment_workspaces;
   // Per view, one term per shadowing light (render/parallel/scene_shadows.hpp).
   std::vector<std::vector<render::Framebuffer>> shadow_terms;
   // Per view, a transparent scene's (render/parallel/scene_layers.hpp).

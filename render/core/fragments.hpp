@@ -86,20 +86,33 @@ std::size_t kept_layers(Layers&& layers, std::size_t max_layers) {
   return count;
 }
 
+// The over operator front to back: `f` seen through what `out` (premultiplied, in double) has
+// gathered in front of it.
+template <typename F>
+void add_behind(double out[4], const F& f) {
+  const double through = 1.0 - out[3];
+  for (int c = 0; c < 4; ++c) out[c] += through * f.rgba[c];
+}
+
+// Front-to-back over of fragments already in order and kept (kept_layers), with the nearest
+// one's depth and key.
+template <typename F>
+void blend_layers(std::span<const F> layers, float rgba[4], float& depth, std::uint32_t& key) {
+  double out[4] = {0, 0, 0, 0};
+  for (const auto& f : layers) add_behind(out, f);
+  for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(out[c]);
+  depth = layers.empty() ? std::numeric_limits<float>::infinity() : layers.front().depth_in;
+  key = layers.empty() ? kNoHit : layers.front().key;
+}
+
 // Front-to-back over of one pixel's kept fragments (kept_layers), with the nearest one's depth
 // and key.
 template <std::ranges::contiguous_range Layers>
 void merge_pixel(Layers&& all, float rgba[4], float& depth, std::uint32_t& key,
                  std::size_t max_layers = kAllLayers) {
-  const auto layers = std::span(all).first(kept_layers(all, max_layers));
-  double out[4] = {0, 0, 0, 0};
-  for (const auto& f : layers) {
-    const double through = 1.0 - out[3];
-    for (int c = 0; c < 4; ++c) out[c] += through * f.rgba[c];
-  }
-  for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(out[c]);
-  depth = layers.empty() ? std::numeric_limits<float>::infinity() : layers.front().depth_in;
-  key = layers.empty() ? kNoHit : layers.front().key;
+  using F = std::ranges::range_value_t<Layers>;
+  const std::span<const F> layers = std::span<const F>(all).first(kept_layers(all, max_layers));
+  blend_layers(layers, rgba, depth, key);
 }
 
 // The flat image of a fragment image: merged color, the nearest fragment's depth and key.

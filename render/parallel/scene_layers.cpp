@@ -59,6 +59,22 @@ ProtocolStatus shadow_layers(FragmentImage& merged, const std::vector<FragmentIm
   return traced;
 }
 
+// Without shadows nothing needs the merged layers on the writer: each rank merges and blends
+// the layers of its stripe of the image, its first layers' distances made view depths there
+// (fragment_composite.hpp, composite_fragments).
+ProtocolStatus blend_in_stripes(const LayerImage& local, const ShadowScene& scene, int writer,
+                                MPI_Comm comm, Framebuffer& image, MergedLayers& kept) {
+  FragmentCompositeOptions options;
+  options.max_layers = static_cast<std::size_t>(scene.options.max_layers);
+  options.stripe_depths = [&camera = scene.camera](std::size_t first, std::span<float> depth) {
+    view_depths_of_distances(camera, first, depth);
+  };
+  const int rc =
+      composite_fragments(local.color, comm, writer, image, options, nullptr, &kept.stripes);
+  if (rc != MPI_SUCCESS) return mpi_failure("compositing the layers", rc);
+  return ProtocolStatus::success();
+}
+
 }  // namespace
 
 ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int writer,
@@ -70,6 +86,8 @@ ProtocolStatus composite_layers(LayerImage& local, const ShadowScene& scene, int
   // flatten_layers orders as the merge would): they are blended where they are, with no copy.
   const bool alone = place.size == 1;
   const auto max_layers = static_cast<std::size_t>(scene.options.max_layers);
+  if (!alone && local.shadow_terms.empty())
+    return blend_in_stripes(local, scene, writer, comm, image, kept);
   kept.shadow_terms.resize(alone ? 0 : local.shadow_terms.size());
   FragmentImage& merged = alone ? local.color : kept.color;
   std::vector<FragmentImage>& terms = alone ? local.shadow_terms : kept.shadow_terms;

@@ -321,30 +321,74 @@ void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, co
          camera.height);
 }
 
+namespace {
+
+// What turns a distance along a pixel's ray into its view depth. The ray runs along forward +
+// a right + b up (an orthonormal frame; a and b per column and per row), so a distance along it
+// is the view depth times |(1, a, b)|: per pixel an add, a square root and a division, the
+// squares of a and b made once per frame (a pixel's direction normalized in double, then its dot
+// with forward, was 40% of the blend of the layers).
+class RayDepthScale {
+ public:
+  explicit RayDepthScale(const Camera& camera)
+      : view_(make_frame(camera)),
+        height_(camera.height),
+        across_(static_cast<std::size_t>(camera.width)) {
+    for (int i = 0; i < camera.width; ++i) {
+      const double a = column_slope(view_, i + 0.5, camera.width);
+      across_[static_cast<std::size_t>(i)] = a * a;
+    }
+  }
+
+  // 1 + b^2 of row j.
+  double row_term(int j) const {
+    const double b = row_slope(view_, j + 0.5, height_);
+    return 1.0 + b * b;
+  }
+
+  float view_depth(float distance, double row_term, int i) const {
+    return static_cast<float>(distance /
+                              std::sqrt(row_term + across_[static_cast<std::size_t>(i)]));
+  }
+
+ private:
+  CameraFrame view_;
+  int height_;
+  std::vector<double> across_;
+};
+
+}  // namespace
+
 void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,
                        std::span<float> depth) {
-  // A pixel's ray runs along forward + a right + b up (an orthonormal frame; a and b per column
-  // and per row), so a distance along it is the view depth times |(1, a, b)|: per pixel an add, a
-  // square root and a division, the squares of a and b made once per frame (a pixel's direction
-  // normalized in double, then its dot with forward, was 40% of the blend of the layers).
-  const CameraFrame view = make_frame(camera);
-  std::vector<double> across(static_cast<std::size_t>(camera.width));
-  for (int i = 0; i < camera.width; ++i) {
-    const double a = column_slope(view, i + 0.5, camera.width);
-    across[static_cast<std::size_t>(i)] = a * a;
-  }
+  const RayDepthScale scale(camera);
   tbb::parallel_for(0, camera.height, [&](int j) {
-    const double b = row_slope(view, j + 0.5, camera.height);
-    const double up = 1.0 + b * b;
+    const double row = scale.row_term(j);
     for (int i = 0; i < camera.width; ++i) {
       const std::size_t p = static_cast<std::size_t>(j) * camera.width + i;
       const std::span<const Fragment> pixel = layers.pixel(p);
       depth[p] = static_cast<int>(pixel.size()) <= layer
                      ? std::numeric_limits<float>::infinity()
-                     : static_cast<float>(pixel[layer].depth_in /
-                                          std::sqrt(up + across[static_cast<std::size_t>(i)]));
+                     : scale.view_depth(pixel[layer].depth_in, row, i);
     }
   });
+}
+
+void view_depths_of_distances(const Camera& camera, std::size_t first, std::span<float> depth) {
+  if (camera.width <= 0) return;
+  const RayDepthScale scale(camera);
+  const auto width = static_cast<std::size_t>(camera.width);
+  std::size_t p = first;
+  const std::size_t end = first + depth.size();
+  while (p < end) {
+    const auto j = static_cast<int>(p / width);
+    const double row = scale.row_term(j);
+    const std::size_t row_end = std::min(end, (p / width + 1) * width);
+    for (; p < row_end; ++p) {
+      float& d = depth[p - first];
+      d = scale.view_depth(d, row, static_cast<int>(p % width));
+    }
+  }
 }
 
 }  // namespace tetray::render

@@ -90,4 +90,9 @@ void trace_layers(LayerImage& image, const TetVolume& volume, const Bvh& bvh, co
 void layer_view_depths(const FragmentImage& layers, const Camera& camera, int layer,
                        std::span<float> depth);
 
+// The same for distances already taken out of the layers: `depth` holds the distances along the
+// rays of pixels first, first + 1, ... (+infinity stays), turned into view depths in place, bit
+// for bit as layer_view_depths turns them.
+void view_depths_of_distances(const Camera& camera, std::size_t first, std::span<float> depth);
+
 }  // namespace tetray::render

@@ -17,6 +17,8 @@
 #undef exit
 #endif
 
+#include <tbb/global_control.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -55,6 +57,7 @@ struct BenchOptions {
   std::vector<double> costs_ns;  // scan, encode, composite[, copy]; measured when empty
   int cost_size = 1024;
   bool fragments = true;  // the transparent rows (fragment_rows.hpp), with real images only
+  int threads = 1;        // per rank, for the fragments' merge (the depth compositor uses one)
   std::string json;
 };
 
@@ -282,10 +285,16 @@ int main(int argc, char** argv) {
   app.add_flag("--fragments,!--no-fragments", options.fragments,
                "also composite each image as transparent layers (fragments) against opaque "
                "(default; not with --model)");
+  app.add_option("--threads", options.threads,
+                 "threads per rank that merge the fragments (default 1: one rank per core, as "
+                 "the depth compositor runs)")
+      ->check(CLI::Range(1, 1024));
   app.add_option("--json", options.json, "also write the figures to this JSON file");
   int status = 0;
   try {
     app.parse(argc, argv);
+    const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                      static_cast<std::size_t>(options.threads));
     status = run(options);
   } catch (const CLI::ParseError& error) {
     int rank = 0;

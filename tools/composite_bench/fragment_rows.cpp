@@ -65,7 +65,7 @@ std::vector<FragmentRow> measure_fragments(const std::vector<int>& sizes,
                                             footprint(coverage, size, rank, ranks)};
       render::CompositeWorkspace workspace;
       render::Framebuffer flat, blended;
-      render::FragmentImage kept;
+      render::FragmentWorkspace<render::Fragment> kept;
       FragmentRow row;
       row.ranks = ranks;
       row.size = size;
@@ -76,7 +76,8 @@ std::vector<FragmentRow> measure_fragments(const std::vector<int>& sizes,
           MPI_Abort(comm, 1);
       });
       row.fragments_ms = median_ms(repeat, comm, [&] {
-        if (render::composite_fragments(layers, comm, 0, blended, nullptr, &kept) != MPI_SUCCESS)
+        if (render::composite_fragments(layers, comm, 0, blended, {}, nullptr, &kept) !=
+            MPI_SUCCESS)
           MPI_Abort(comm, 1);
       });
       row.fragments_per_rank = static_cast<double>(layers.fragments.size());

@@ -53,4 +53,8 @@ void layer_view_depths(const FragmentImage& layers, const Camera& camera, int la
   variant().view_depths_of_layer(layers, camera, layer, depth);
 }
 
+void view_depths_of_distances(const Camera& camera, std::size_t first, std::span<float> depth) {
+  variant().view_depths_of_rays(camera, first, depth);
+}
+
 }  // namespace tetray::render

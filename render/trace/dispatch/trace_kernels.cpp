@@ -12,6 +12,7 @@ extern "C" const TraceKernels TETRAY_ISA_TABLE(trace) = {&trace,
                                                          &has_transparency,
                                                          &trace_layers,
                                                          &layer_view_depths,
+                                                         &view_depths_of_distances,
                                                          &kCullingKernels};
 
 }  // namespace tetray::render

@@ -21,6 +21,7 @@ struct TraceKernels {
   decltype(&has_transparency) any_transparent;
   decltype(&trace_layers) trace_layered;
   decltype(&layer_view_depths) view_depths_of_layer;
+  decltype(&view_depths_of_distances) view_depths_of_rays;
   // Not called by the dispatch: the variant's own copy of the frustum and straddle tests, for the
   // tests of render/trace (culling_kernels.hpp).
   const CullingKernels* culling;

@@ -11,7 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
+#include <span>
 #include <tuple>
 
 #include "composite_test_images.hpp"
@@ -65,7 +67,13 @@ void check_partition(const std::function<int(std::size_t)>& owner, const char* w
   const VolumeFragmentImage mine = render_piece(owner, w.rank);
   Framebuffer image;
   FragmentCompositeStats stats;
-  ASSERT_EQ(composite_fragments(mine, MPI_COMM_WORLD, 0, image, &stats), MPI_SUCCESS) << what;
+  ASSERT_EQ(composite_fragments(mine, MPI_COMM_WORLD, 0, image, {}, &stats), MPI_SUCCESS) << what;
+  // Every rank merges its stripe's fragments of all ranks: together, every fragment once.
+  std::uint64_t merged = stats.fragments;
+  MPI_Allreduce(MPI_IN_PLACE, &merged, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  std::uint64_t sent = mine.fragments.size();
+  MPI_Allreduce(MPI_IN_PLACE, &sent, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_EQ(merged, sent) << what;
   if (w.rank != 0) return;
   VolumeFragmentImage whole = render_piece([](std::size_t) { return 0; }, 0);
   const Framebuffer expected = resolve(whole);
@@ -80,7 +88,7 @@ void check_partition(const std::function<int(std::size_t)>& owner, const char* w
     ASSERT_EQ(image.hit[p], expected.hit[p]) << what << " pixel " << p;
   }
   EXPECT_GT(covered, expected.pixel_count() / 10) << what;
-  EXPECT_GE(stats.fragments, whole.fragments.size()) << what;
+  EXPECT_GE(merged, whole.fragments.size()) << what;
 }
 
 double centroid_x(std::size_t t) {
@@ -122,19 +130,30 @@ std::vector<Fragment> rank_layers(std::size_t p, int rank) {
   return layers;
 }
 
-// What a rank hands to the compositor: its own nearest layers per pixel (as trace_layers peels).
-FragmentImage rank_image(int rank, std::size_t pixels, std::size_t max_layers) {
+// How a rank hands its layers of a pixel to the compositor: its own nearest ones (as
+// trace_layers peels), all of them in order (lists of up to six: the merge's general case, and
+// the sort where they are too many), or all of them in reverse (which the merge must sort).
+enum class Handed { kept, all_in_order, reversed };
+
+FragmentImage rank_image(int rank, int width, int height, std::size_t max_layers,
+                         Handed handed = Handed::kept) {
   FragmentImage image;
-  image.width = static_cast<int>(pixels);
-  image.height = 1;
+  image.width = width;
+  image.height = height;
   image.begin.push_back(0);
-  for (std::size_t p = 0; p < pixels; ++p) {
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
     std::vector<Fragment> layers = rank_layers(p, rank);
-    layers.resize(kept_layers(layers, max_layers));
+    const std::size_t kept = kept_layers(layers, max_layers);  // sorts them
+    if (handed == Handed::kept) layers.resize(kept);
+    if (handed == Handed::reversed) std::reverse(layers.begin(), layers.end());
     image.fragments.insert(image.fragments.end(), layers.begin(), layers.end());
     image.begin.push_back(static_cast<std::uint32_t>(image.fragments.size()));
   }
   return image;
+}
+
+FragmentImage rank_image(int rank, std::size_t pixels, std::size_t max_layers) {
+  return rank_image(rank, static_cast<int>(pixels), 1, max_layers);
 }
 
 // The layers a pixel keeps, worked out here rather than by kept_layers: `all` sorted by the tie
@@ -179,6 +198,94 @@ TEST(FragmentComposite, KeepsTheNearestLayersOfAllRanks) {
     }
   }
   EXPECT_GT(capped, kPixels / 4) << "the cap and the opaque cut must matter";
+}
+
+// Pixel p's kept layers of all ranks, nearest first, worked out here (nearest_layers).
+std::vector<Fragment> all_ranks_kept(std::size_t p, int ranks, std::size_t max_layers) {
+  std::vector<Fragment> all;
+  for (int r = 0; r < ranks; ++r) {
+    const std::vector<Fragment> layers = rank_layers(p, r);
+    all.insert(all.end(), layers.begin(), layers.end());
+  }
+  all.resize(nearest_layers(all, max_layers));
+  return all;
+}
+
+// The stripes' compositor (each rank merges and blends a stripe, the root gathers them) gives
+// each pixel the over of the nearest max_layers of all ranks, front to back in double, with the
+// nearest one's key and its depth as the stripe hook makes it, however the ranks hand in their
+// layers (Handed). The image is 41 x 13, so that stripes end inside rows.
+void expect_stripes_blend_the_nearest_layers(Handed handed) {
+  constexpr int kWidth = 41, kHeight = 13;
+  constexpr std::size_t kMaxLayers = 3;
+  const auto w = world();
+  FragmentCompositeOptions options;
+  options.max_layers = kMaxLayers;
+  // This rank's first pixel and pixel count as the hook saw them (-1: never called).
+  std::vector<long long> stripe = {-1, -1};
+  options.stripe_depths = [&](std::size_t first, std::span<float> depth) {
+    stripe = {static_cast<long long>(first), static_cast<long long>(depth.size())};
+    for (float& d : depth) d = 2 * d + 1;
+  };
+  Framebuffer image;
+  FragmentWorkspace<Fragment> workspace;
+  for (int frame = 0; frame < 2; ++frame) {  // the second reuses the workspace and the image
+    ASSERT_EQ(composite_fragments(rank_image(w.rank, kWidth, kHeight, kMaxLayers, handed),
+                                  MPI_COMM_WORLD, 0, image, options, nullptr, &workspace),
+              MPI_SUCCESS);
+  }
+  // The stripes cover the image once, in rank order.
+  std::vector<long long> stripes(2 * static_cast<std::size_t>(w.size));
+  MPI_Gather(stripe.data(), 2, MPI_LONG_LONG, stripes.data(), 2, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  if (w.rank != 0) return;
+  long long next = 0;
+  for (int r = 0; r < w.size; ++r) {
+    EXPECT_EQ(stripes[2 * static_cast<std::size_t>(r)], next) << "rank " << r;
+    next += stripes[2 * static_cast<std::size_t>(r) + 1];
+  }
+  EXPECT_EQ(next, kWidth * kHeight);
+  ASSERT_EQ(image.width, kWidth);
+  ASSERT_EQ(image.height, kHeight);
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    const std::vector<Fragment> kept = all_ranks_kept(p, w.size, kMaxLayers);
+    double out[4] = {0, 0, 0, 0};
+    for (const Fragment& f : kept) {
+      const double through = 1.0 - out[3];
+      for (int c = 0; c < 4; ++c) out[c] += through * f.rgba[c];
+    }
+    for (int c = 0; c < 4; ++c)
+      ASSERT_EQ(image.rgba[4 * p + c], static_cast<float>(out[c])) << "pixel " << p;
+    const float depth = kept.empty() ? std::numeric_limits<float>::infinity() : kept[0].depth_in;
+    EXPECT_EQ(image.depth[p], 2 * depth + 1) << "pixel " << p;
+    EXPECT_EQ(image.hit[p], kept.empty() ? kNoHit : kept[0].key) << "pixel " << p;
+  }
+}
+
+TEST(FragmentStripes, BlendTheNearestLayersOfAllRanksFromTheirKeptOnes) {
+  expect_stripes_blend_the_nearest_layers(Handed::kept);
+}
+
+TEST(FragmentStripes, BlendTheNearestLayersOfAllRanksFromAllOfThemInOrder) {
+  expect_stripes_blend_the_nearest_layers(Handed::all_in_order);
+}
+
+TEST(FragmentStripes, SortLayersARankHandsInOutOfOrder) {
+  expect_stripes_blend_the_nearest_layers(Handed::reversed);
+}
+
+// Images of different sizes on different ranks, or a malformed one, are refused on every rank
+// alike, before any fragment moves.
+TEST(FragmentStripes, RefuseImagesOfDifferentSizesOnEveryRank) {
+  const auto w = world();
+  FragmentImage image = rank_image(w.rank, 20, 3, 2);
+  if (w.size > 1 && w.rank == w.size - 1) {
+    image = rank_image(w.rank, 21, 3, 2);
+  } else if (w.size == 1) {
+    image.begin.pop_back();  // one offset short
+  }
+  Framebuffer out;
+  EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, 0, out), MPI_ERR_SIZE);
+  EXPECT_EQ(out.pixel_count(), 0u);
 }
 
 }  // namespace
