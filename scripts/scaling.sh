@@ -7,6 +7,8 @@
 #   scripts/scaling.sh sweep       16 to 4,096 ranks (and past, where noted) on the cluster and
 #                                  Blue Gene/P platforms: sweep.csv and sweep.png
 #   scripts/scaling.sh point PLATFORM RANKS [bench options...]   one simulated run
+#   scripts/scaling.sh costs       the per-pixel costs the sweep injects (scan, encode, composite,
+#                                  copy, ns), with TETRAY_SCALING_THREADS threads per rank
 # Results go to out/scaling/ (TETRAY_SCALING_OUT). Every simulated figure is deterministic: one
 # run each.
 set -euo pipefail
@@ -62,11 +64,13 @@ print(''.join(f'bgp-{x + 8 * y + 256 * z}
 }
 
 # The per-pixel costs of this machine's kernels (scan, encode, composite, copy, in ns), measured
-# once by the normal build on 2 ranks; the model images inject them.
+# once by the normal build on 2 ranks, with TETRAY_SCALING_THREADS threads per rank (default 1;
+# the ranks unbound, so that a rank's threads have the cores); the model images inject them.
 costs() {
-  local file=$out/costs.json
-  [ -f "$file" ] || mpirun -np 2 "${mpi_flags[@]}" build/bin/tetray-composite-bench --sizes 64 \
-    --ranks 2 --repeat 1 --cost-size 2048 --json "$file" >/dev/null
+  local threads=${TETRAY_SCALING_THREADS:-1}
+  local file=$out/costs_t$threads.json
+  [ -f "$file" ] || mpirun -np 2 --bind-to none "${mpi_flags[@]}" build/bin/tetray-composite-bench \
+    --sizes 64 --ranks 2 --repeat 1 --cost-size 2048 --threads "$threads" --json "$file" >/dev/null
   python3 -c "
 import json, sys
 c = json.load(open(sys.argv[1]))
@@ -159,7 +163,9 @@ sweep() {
 case "${1:-}" in
   calibrate) build_smpi; calibrate ;;
   sweep) build_smpi; sweep ;;
+  costs) [ -x build/bin/tetray-composite-bench ] || cmake --build build --target tetray-composite-bench
+         costs ;;
   point) build_smpi; shift; platform=$1 ranks=$2; shift 2
          simulate "$platform" "$ranks" "$out/point.json" "$@" ;;
-  *) sed -n '2,11p' "$0" >&2; exit 2 ;;
+  *) sed -n '2,13p' "$0" >&2; exit 2 ;;
 esac

@@ -1,21 +1,23 @@
 #include "render/composite/composite_codec.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cstring>
+#include <utility>
 
 namespace tetray::render {
 namespace {
 
-// Appends runs of active pixels in increasing index order. A run stays open while the next
-// pixels continue it (a full-width active region crosses rows) and is copied, three arrays,
-// when it closes.
-class PieceWriter {
+// Appends the headers of runs of active pixels in increasing index order: the message without
+// its pixels (with_pixels adds them). A run stays open while the next pixels continue it (a
+// full-width active region crosses rows).
+class RunWriter {
  public:
-  // `most_words` bounds the message, so that the runs' appends never move it.
-  PieceWriter(const Framebuffer& image, PixelSpan span, std::size_t most_words)
-      : image_(image), cursor_(span.begin) {
+  // `most_words` bounds the headers, so that the runs' appends never move them.
+  RunWriter(PixelSpan span, std::size_t most_words) : cursor_(span.begin) {
     words_.reserve(most_words);
     words_.assign(kPieceHeaderWords, 0);
     words_[0] = span.begin;
@@ -48,22 +50,14 @@ class PieceWriter {
   void close_run() {
     const std::size_t count = open_.size();
     if (count == 0) return;
-    const std::size_t at = words_.size();
-    words_.resize(at + kRunHeaderWords + kPixelWords * count);
-    std::uint32_t* out = words_.data() + at;
-    out[0] = open_.begin - cursor_;
-    out[1] = static_cast<std::uint32_t>(count);
-    out += kRunHeaderWords;
-    std::memcpy(out, image_.rgba.data() + 4 * std::size_t{open_.begin}, 4 * count * sizeof(float));
-    std::memcpy(out + 4 * count, image_.depth.data() + open_.begin, count * sizeof(float));
-    std::memcpy(out + 5 * count, image_.hit.data() + open_.begin, count * sizeof(std::uint32_t));
+    words_.push_back(open_.begin - cursor_);
+    words_.push_back(static_cast<std::uint32_t>(count));
     cursor_ = open_.end;
     ++run_count_;
     pixel_count_ += static_cast<std::uint32_t>(count);
     open_ = {};
   }
 
-  const Framebuffer& image_;
   PieceMessage words_;
   std::uint32_t cursor_;  // index just after the last run written
   PixelSpan open_;        // the run not written yet (empty: none)
@@ -71,6 +65,56 @@ class PieceWriter {
   std::uint32_t pixel_count_ = 0;
   PixelRect rect_{};
 };
+
+// The header and run headers of the active pixels of `span` (encode_piece without the pixels).
+PieceMessage scan_runs(const Framebuffer& image, PixelSpan span, PixelRect hint) {
+  if (span.size() == 0 || hint.empty() || image.width == 0) {
+    return RunWriter(span, kPieceHeaderWords).finish();
+  }
+  const auto width = static_cast<std::uint32_t>(image.width);
+  const int first_row = std::max(hint.y0, static_cast<int>(span.begin / width));
+  const int last_row = std::min(hint.y1 - 1, static_cast<int>((span.end - 1) / width));
+  const auto rows = static_cast<std::size_t>(std::max(0, last_row - first_row + 1));
+  const std::size_t scanned_at_most =
+      std::min<std::size_t>(span.size(), rows * static_cast<std::size_t>(hint.x1 - hint.x0));
+  // A row's runs are separated by background pixels: at most (its pixels + 1) / 2 of them.
+  const std::size_t runs_at_most = (scanned_at_most + rows) / 2 + 1;
+  RunWriter writer(span, kPieceHeaderWords + kRunHeaderWords * runs_at_most);
+  for (int j = first_row; j <= last_row; ++j) {
+    const std::uint32_t row = static_cast<std::uint32_t>(j) * width;
+    std::uint32_t index = std::max(row + static_cast<std::uint32_t>(hint.x0), span.begin);
+    const std::uint32_t end = std::min(row + static_cast<std::uint32_t>(hint.x1), span.end);
+    while (index < end) {
+      const std::uint32_t run_begin = run_end(image, index, end, false);
+      index = run_end(image, run_begin, end, true);
+      if (index > run_begin) writer.add_run(run_begin, index, row, j);
+    }
+  }
+  return std::move(writer).finish();
+}
+
+// The whole message of `runs` (scan_runs): each run's header, then its pixels as three arrays.
+PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs) {
+  const std::size_t run_count = runs[1], pixels = runs[2];
+  PieceMessage words;
+  words.resize(kPieceHeaderWords + kRunHeaderWords * run_count + kPixelWords * pixels);
+  std::copy(runs.begin(), runs.begin() + kPieceHeaderWords, words.begin());
+  std::size_t position = runs[0], at = kPieceHeaderWords;
+  for (std::size_t r = 0; r < run_count; ++r) {
+    const std::uint32_t skip = runs[kPieceHeaderWords + kRunHeaderWords * r];
+    const std::uint32_t count = runs[kPieceHeaderWords + kRunHeaderWords * r + 1];
+    position += skip;
+    words[at] = skip;
+    words[at + 1] = count;
+    std::uint32_t* out = words.data() + at + kRunHeaderWords;
+    std::memcpy(out, image.rgba.data() + 4 * position, 4 * count * sizeof(float));
+    std::memcpy(out + 4 * count, image.depth.data() + position, count * sizeof(float));
+    std::memcpy(out + 5 * count, image.hit.data() + position, count * sizeof(std::uint32_t));
+    at += kRunHeaderWords + kPixelWords * count;
+    position += count;
+  }
+  return words;
+}
 
 // One run of a checked message: where its pixels go and its three arrays.
 struct Run {
@@ -151,7 +195,7 @@ float select_float(std::uint32_t mask, std::uint32_t incoming, float old) {
 
 // Keeps, per pixel, the winner of wins_over. Every pixel is written through a select, without
 // branches, over arrays that do not overlap, so that the compiler vectorizes the loop.
-void composite_run(Framebuffer& image, const Run& run) {
+void composite_pixels(Framebuffer& image, const Run& run) {
   const std::uint32_t* __restrict in_rgba = run.rgba;
   const std::uint32_t* __restrict in_depth = run.depth;
   const std::uint32_t* __restrict in_hit = run.hit;
@@ -169,40 +213,165 @@ void composite_run(Framebuffer& image, const Run& run) {
   }
 }
 
+// composite_pixels over a long run in blocks on the rank's threads (each pixel is its own).
+void composite_run(Framebuffer& image, const Run& run) {
+  constexpr std::size_t kBlock = std::size_t{1} << 15;
+  if (run.count <= kBlock) return composite_pixels(image, run);
+  tbb::parallel_for(std::size_t{0}, (run.count + kBlock - 1) / kBlock, [&](std::size_t b) {
+    const std::size_t first = b * kBlock, count = std::min(kBlock, run.count - first);
+    composite_pixels(image, {run.position + first, count, run.rgba + 4 * first, run.depth + first,
+                             run.hit + first});
+  });
+}
+
 void copy_run(Framebuffer& image, const Run& run) {
   std::memcpy(image.rgba.data() + 4 * run.position, run.rgba, 4 * run.count * sizeof(float));
   std::memcpy(image.depth.data() + run.position, run.depth, run.count * sizeof(float));
   std::memcpy(image.hit.data() + run.position, run.hit, run.count * sizeof(std::uint32_t));
 }
 
+// Blocks of 32-bit words at their distances from `base` as one committed datatype.
+int run_type(std::span<const void* const> blocks, std::span<const int> lengths, const void* base,
+             MPI_Datatype& type) {
+  MPI_Aint origin = 0;
+  MPI_Get_address(base, &origin);
+  MPI_Aint displacements[4];
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    MPI_Aint at = 0;
+    MPI_Get_address(blocks[k], &at);
+    displacements[k] = at - origin;
+  }
+  if (int rc = MPI_Type_create_hindexed(static_cast<int>(blocks.size()), lengths.data(),
+                                        displacements, MPI_UINT32_T, &type);
+      rc != MPI_SUCCESS)
+    return rc;
+  return MPI_Type_commit(&type);
+}
+
 }  // namespace
 
 PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint) {
-  if (span.size() == 0 || hint.empty() || image.width == 0) {
-    return PieceWriter(image, span, kPieceHeaderWords).finish();
+  return with_pixels(image, scan_runs(image, span, hint));
+}
+
+OutgoingPiece outgoing_piece(const Framebuffer& image, PixelSpan span, PixelRect hint) {
+  PieceMessage runs = scan_runs(image, span, hint);
+  if (runs[1] != 1) return {with_pixels(image, runs), nullptr, {}};
+  const std::uint32_t begin = span.begin + runs[kPieceHeaderWords];
+  const PixelSpan run{begin, begin + runs[kPieceHeaderWords + 1]};
+  return {std::move(runs), &image, run};
+}
+
+OutgoingPiece::OutgoingPiece(OutgoingPiece&& other) noexcept
+    : words_(std::move(other.words_)),
+      image_(other.image_),
+      run_(other.run_),
+      type_(std::exchange(other.type_, MPI_DATATYPE_NULL)) {}
+
+OutgoingPiece& OutgoingPiece::operator=(OutgoingPiece&& other) noexcept {
+  if (this != &other) {
+    if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
+    words_ = std::move(other.words_);
+    image_ = other.image_;
+    run_ = other.run_;
+    type_ = std::exchange(other.type_, MPI_DATATYPE_NULL);
   }
+  return *this;
+}
+
+OutgoingPiece::~OutgoingPiece() {
+  if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
+}
+
+std::size_t OutgoingPiece::wire_words() const {
+  return words_.size() + (in_place() ? kPixelWords * std::size_t{run_.size()} : 0);
+}
+
+PieceMessage OutgoingPiece::wire() const {
+  return in_place() ? with_pixels(*image_, words_) : words_;
+}
+
+int OutgoingPiece::make_run_type(const std::uint32_t* header, const void* base) {
+  const std::size_t n = run_.size();
+  const void* blocks[] = {header, image_->rgba.data() + 4 * std::size_t{run_.begin},
+                          image_->depth.data() + run_.begin, image_->hit.data() + run_.begin};
+  int lengths[] = {static_cast<int>(words_.size()), static_cast<int>(4 * n), static_cast<int>(n),
+                   static_cast<int>(n)};
+  const int first = header != nullptr ? 0 : 1;
+  if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
+  return run_type(std::span(blocks).subspan(first), std::span(lengths).subspan(first), base, type_);
+}
+
+int OutgoingPiece::isend(int peer, int tag, MPI_Comm comm, MPI_Request* request) {
+  if (!in_place()) {
+    return MPI_Isend(words_.data(), static_cast<int>(words_.size()), MPI_UINT32_T, peer, tag, comm,
+                     request);
+  }
+  if (int rc = make_run_type(words_.data(), words_.data()); rc != MPI_SUCCESS) return rc;
+  return MPI_Isend(words_.data(), 1, type_, peer, tag, comm, request);
+}
+
+int OutgoingPiece::isend_parts(int peer, int tag, MPI_Comm comm, MPI_Request requests[2]) {
+  const std::size_t first = std::min(words_.size(), kFirstPartWords);
+  if (int rc = MPI_Isend(words_.data(), static_cast<int>(first), MPI_UINT32_T, peer, tag, comm,
+                         &requests[0]);
+      rc != MPI_SUCCESS)
+    return rc;
+  if (in_place()) {
+    const void* base = image_->rgba.data() + 4 * std::size_t{run_.begin};
+    if (int rc = make_run_type(nullptr, base); rc != MPI_SUCCESS) return rc;
+    return MPI_Isend(base, 1, type_, peer, tag, comm, &requests[1]);
+  }
+  if (words_.size() == first) return MPI_SUCCESS;
+  return MPI_Isend(words_.data() + first, static_cast<int>(words_.size() - first), MPI_UINT32_T,
+                   peer, tag, comm, &requests[1]);
+}
+
+int post_piece_body(Framebuffer& image, PixelSpan span, ReceiveBuffer& buffer,
+                    std::size_t header_words, int peer, int tag, MPI_Comm comm,
+                    MPI_Request* request, PartsArrival& arrival) {
+  const std::uint32_t* header = buffer.words.get();
+  if (header_words < kPieceHeaderWords) return MPI_ERR_OTHER;
+  const std::size_t total = kPieceHeaderWords + kRunHeaderWords * std::size_t{header[1]} +
+                            kPixelWords * std::size_t{header[2]};
+  if (total > buffer.capacity || total < header_words ||
+      (header_words < kFirstPartWords && total != header_words))
+    return MPI_ERR_OTHER;
+  arrival.header_words = header_words;
+  arrival.body_words = total - header_words;
+  arrival.in_place = header[1] == 1 && header_words == kFirstPartWords && header[0] == span.begin &&
+                     header[kPieceHeaderWords] == 0 &&
+                     header[kPieceHeaderWords + 1] == span.size() &&
+                     span.end <= image.pixel_count();
+  if (arrival.body_words == 0) return MPI_SUCCESS;
+  if (!arrival.in_place) {
+    return MPI_Irecv(buffer.words.get() + header_words, static_cast<int>(arrival.body_words),
+                     MPI_UINT32_T, peer, tag, comm, request);
+  }
+  // The span's colors, depths and keys where the image holds them.
+  const std::size_t n = span.size();
+  const void* blocks[] = {image.rgba.data() + 4 * std::size_t{span.begin},
+                          image.depth.data() + span.begin, image.hit.data() + span.begin};
+  const int lengths[] = {static_cast<int>(4 * n), static_cast<int>(n), static_cast<int>(n)};
+  if (int rc = run_type(blocks, lengths, blocks[0], arrival.type); rc != MPI_SUCCESS) return rc;
+  return MPI_Irecv(image.rgba.data() + 4 * std::size_t{span.begin}, 1, arrival.type, peer, tag,
+                   comm, request);
+}
+
+std::optional<PixelRect> take_piece_body(Framebuffer& image, PixelSpan, const ReceiveBuffer& buffer,
+                                         PartsArrival& arrival, std::size_t body_words) {
+  if (body_words != arrival.body_words) return std::nullopt;
+  const std::span<const std::uint32_t> message(buffer.words.get(),
+                                               arrival.header_words + arrival.body_words);
+  if (!arrival.in_place) return copy_piece(image, message);
+  // The pixels are in place; the header's rectangle must lie in the image.
+  const std::uint32_t* header = buffer.words.get();
   const auto width = static_cast<std::uint32_t>(image.width);
-  const int first_row = std::max(hint.y0, static_cast<int>(span.begin / width));
-  const int last_row = std::min(hint.y1 - 1, static_cast<int>((span.end - 1) / width));
-  const auto rows = static_cast<std::size_t>(std::max(0, last_row - first_row + 1));
-  const std::size_t scanned_at_most =
-      std::min<std::size_t>(span.size(), rows * static_cast<std::size_t>(hint.x1 - hint.x0));
-  // A row's runs are separated by background pixels: at most (its pixels + 1) / 2 of them.
-  const std::size_t runs_at_most = (scanned_at_most + rows) / 2 + 1;
-  PieceWriter writer(
-      image, span,
-      kPieceHeaderWords + kPixelWords * scanned_at_most + kRunHeaderWords * runs_at_most);
-  for (int j = first_row; j <= last_row; ++j) {
-    const std::uint32_t row = static_cast<std::uint32_t>(j) * width;
-    std::uint32_t index = std::max(row + static_cast<std::uint32_t>(hint.x0), span.begin);
-    const std::uint32_t end = std::min(row + static_cast<std::uint32_t>(hint.x1), span.end);
-    while (index < end) {
-      const std::uint32_t run_begin = run_end(image, index, end, false);
-      index = run_end(image, run_begin, end, true);
-      if (index > run_begin) writer.add_run(run_begin, index, row, j);
-    }
-  }
-  return std::move(writer).finish();
+  const auto height = static_cast<std::uint32_t>(image.height);
+  if (header[3] > header[5] || header[5] > width || header[4] > header[6] || header[6] > height)
+    return std::nullopt;
+  return PixelRect{static_cast<int>(header[3]), static_cast<int>(header[4]),
+                   static_cast<int>(header[5]), static_cast<int>(header[6])};
 }
 
 std::optional<PixelRect> composite_piece(Framebuffer& image,

@@ -9,13 +9,22 @@
 // (float bits), n hit keys. A run continues across rows where the active pixels do (a
 // full-width region is one run). So encoding is a scan for runs and three copies per run,
 // decoding works on arrays (the compositing loop vectorizes), and a pixel costs 24 bytes.
+//
+// A piece whose active pixels are one run (a span of a dense image, full-width rows) is sent
+// without the copies (outgoing_piece, isend_piece): its nine header words, then its three arrays
+// straight from the framebuffer, one MPI datatype over the four blocks. The receiver sees the
+// same words either way.
 #pragma once
+
+#include <mpi.h>
 
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
+#include "render/composite/composite.hpp"
 #include "render/composite/composite_region.hpp"
 #include "render/composite/message_memory.hpp"
 #include "render/core/framebuffer.hpp"
@@ -46,6 +55,93 @@ inline std::uint64_t piece_bytes(const Framebuffer&, std::span<const std::uint32
 // Encodes the active pixels of `span`; `hint` must hold every active pixel of the span (a
 // looser rectangle costs scanning time, never correctness).
 PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);
+
+// A piece as the compositor sends it: the encoded words, or, where the span's active pixels are
+// one run, the header words alone, the run's pixels to follow from `image`. Holds the MPI
+// datatype of its send until it is destroyed, which must come after the send completes; the
+// image's run must not change until then either.
+class OutgoingPiece {
+ public:
+  OutgoingPiece() = default;
+  OutgoingPiece(PieceMessage words, const Framebuffer* image, PixelSpan run)
+      : words_(std::move(words)), image_(image), run_(run) {}
+  OutgoingPiece(OutgoingPiece&& other) noexcept;
+  OutgoingPiece& operator=(OutgoingPiece&& other) noexcept;
+  ~OutgoingPiece();
+
+  bool in_place() const { return image_ != nullptr; }
+  // Words on the wire: the header's and, in place, the run's pixels'.
+  std::size_t wire_words() const;
+  // The message as it travels (tests).
+  PieceMessage wire() const;
+  // MPI_Isend of the message: the words, or one datatype over the header and the run's arrays.
+  int isend(int peer, int tag, MPI_Comm comm, MPI_Request* request);
+  // The same as two messages, the first kFirstPartWords words (or fewer, all there are), then
+  // the rest when there is any (requests[1] stays null otherwise).
+  int isend_parts(int peer, int tag, MPI_Comm comm, MPI_Request requests[2]);
+
+ private:
+  // The run's three arrays, after `header` words when given, as one datatype of words at their
+  // distances from `base` (into type_).
+  int make_run_type(const std::uint32_t* header, const void* base);
+
+  PieceMessage words_;
+  const Framebuffer* image_ = nullptr;
+  PixelSpan run_;
+  MPI_Datatype type_ = MPI_DATATYPE_NULL;
+};
+
+// The assembly sends a piece as two messages: its first kFirstPartWords words (the piece's
+// header and its first run's), then the rest, the body. Having read the header, the receiver
+// takes a piece that is one run over its whole span straight into its image.
+inline constexpr std::size_t kFirstPartWords = kPieceHeaderWords + kRunHeaderWords;
+
+// What a receiver learnt from a piece's header: the words of each part, whether the body goes
+// straight into the image, and the datatype of that receive (freed with it).
+struct PartsArrival {
+  std::size_t header_words = 0;
+  std::size_t body_words = 0;
+  bool in_place = false;
+  MPI_Datatype type = MPI_DATATYPE_NULL;
+
+  PartsArrival() = default;
+  PartsArrival(const PartsArrival&) = delete;
+  PartsArrival& operator=(const PartsArrival&) = delete;
+  ~PartsArrival() {
+    if (type != MPI_DATATYPE_NULL) MPI_Type_free(&type);
+  }
+};
+
+// encode_piece without the copies where the active pixels are one run.
+OutgoingPiece outgoing_piece(const Framebuffer& image, PixelSpan span, PixelRect hint);
+
+inline std::uint64_t message_bytes(const OutgoingPiece& piece) {
+  return piece.wire_words() * sizeof(std::uint32_t);
+}
+
+inline int isend_piece(OutgoingPiece& piece, int peer, int tag, MPI_Comm comm,
+                       MPI_Request* request) {
+  return piece.isend(peer, tag, comm, request);
+}
+
+inline int isend_piece_parts(OutgoingPiece& piece, int peer, int tag, MPI_Comm comm,
+                             MPI_Request requests[2]) {
+  return piece.isend_parts(peer, tag, comm, requests);
+}
+
+// Posts the receive of a piece's body from the header that came (`header_words` words at the
+// start of `buffer`): straight into `image` when the piece is one run over all of `span`, into
+// the buffer after the header otherwise; none when the piece has no body. MPI_ERR_OTHER when the
+// header does not describe a piece of `span`.
+int post_piece_body(Framebuffer& image, PixelSpan span, ReceiveBuffer& buffer,
+                    std::size_t header_words, int peer, int tag, MPI_Comm comm,
+                    MPI_Request* request, PartsArrival& arrival);
+
+// The piece once its body came (`body_words` of them): copied into `image` unless it came in
+// place. Its rectangle, or nothing when the message is malformed.
+std::optional<PixelRect> take_piece_body(Framebuffer& image, PixelSpan span,
+                                         const ReceiveBuffer& buffer, PartsArrival& arrival,
+                                         std::size_t body_words);
 
 // Composites an encoded piece into `image` by wins_over and returns the rectangle of its
 // pixels, or nothing, leaving `image` as it was, when the message is malformed or does not fit

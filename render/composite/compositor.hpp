@@ -5,15 +5,22 @@
 //
 //   PixelRect active_rect(const Image&, PixelRect within);   of the active pixels within
 //   PixelRect image_rect(const Image&);                      the whole image
-//   Message encode_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
+//   Message outgoing_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
+//   int isend_piece(Message&, int peer, int tag, MPI_Comm, MPI_Request*);  its MPI_Isend
+//   int isend_piece_parts(Message&, int peer, int tag, MPI_Comm, MPI_Request[2]);  the same as
+//       a header message and a body message (the assembly's pieces)
+//   int post_piece_body(Image&, PixelSpan, ReceiveBuffer&, std::size_t header_words, int peer,
+//       int tag, MPI_Comm, MPI_Request*, PartsArrival&);  the body's receive, in place when the
+//       header says the piece is its whole span
+//   std::optional<PixelRect> take_piece_body(Image&, PixelSpan, ReceiveBuffer&, PartsArrival&,
+//       std::size_t body_words);  the assembled piece, copied unless it arrived in place
 //   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
-//   std::optional<PixelRect> copy_piece(Image&, std::span<const std::uint32_t>);  (assembly)
 //   std::size_t Image::pixel_count() const;
 //   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
 //   std::size_t piece_capacity(const Image&, PixelSpan);   most words a piece of the span takes
 //   std::uint64_t piece_bytes(const Image&, std::span<const std::uint32_t>);   of a received one
 //
-// where Message has data() and size() (in 32-bit words, what goes on the wire).
+// where a Message arrives as 32-bit words.
 //
 // Rounds (composite_plan.hpp): the fold, the radix-k rounds, then the assembly of the final
 // image on the root by the same groups in reverse order. In the last radix round each group
@@ -53,7 +60,7 @@ inline constexpr std::size_t kPostedReceives = 8;
 template <typename Image>
 class Compositor {
  public:
-  using Message = decltype(encode_piece(std::declval<const Image&>(), PixelSpan{}, PixelRect{}));
+  using Message = decltype(outgoing_piece(std::declval<const Image&>(), PixelSpan{}, PixelRect{}));
 
   // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`.
   Compositor(Image& image, MPI_Comm comm, int rank, const CompositeOptions& options,
@@ -135,7 +142,8 @@ class Compositor {
   // This rank's own pixels outside its span need no clearing before they are overwritten: the
   // composited pixel that arrives for each was chosen over it, or is it, and a pixel whose
   // composite is the background was the background here too. So the pieces are copied, not
-  // composited (copy_piece): no comparison, the same image.
+  // composited (take_piece_body): no comparison, the same image; a piece that is its whole span
+  // lands in the image itself.
   int assemble(int round, int tag, bool& handed_on) {
     const int radix = plan_.radices[static_cast<std::size_t>(round)];
     const RoundPosition position = round_position(plan_, round, virtual_rank_);
@@ -143,7 +151,7 @@ class Compositor {
     handed_on = position.digit != 0;
     if (handed_on) {
       const int keeper = virtual_rank_ - position.digit * position.stride;
-      return exchange(tag, one_send(actual_rank(keeper), encode(span_)), {});
+      return exchange(tag, one_send(actual_rank(keeper), encode(span_)), {}, Arrival::copy);
     }
     std::vector<Incoming> receives;
     for (int part = 1; part < radix; ++part) {
@@ -180,7 +188,7 @@ class Compositor {
     return sends;
   }
 
-  Message encode(PixelSpan span) const { return encode_piece(image_, span, rect_); }
+  Message encode(PixelSpan span) const { return outgoing_piece(image_, span, rect_); }
 
   // What a received piece does to the image: composited by wins_over, or copied over it (the
   // assembly's pieces, already final).
@@ -190,16 +198,20 @@ class Compositor {
   // span allows), sends every message, takes in the incoming pieces in their order of arrival
   // (the result does not depend on it: wins_over is a total order, and copied pieces do not
   // overlap), then waits for the sends. Receives are posted from known peers rather than
-  // probed: a probe polls in SimGrid's SMPI, whose simulated time it would distort.
+  // probed: a probe polls in SimGrid's SMPI, whose simulated time it would distort. The
+  // assembly's pieces (Arrival::copy) travel as a header and a body, so that a piece that is
+  // its whole span lands in the image itself (receive_parts_batch).
   int exchange(int tag, std::vector<Outgoing> sends, const std::vector<Incoming>& receives,
                Arrival arrival = Arrival::composite) {
-    std::vector<MPI_Request> send_requests(sends.size(), MPI_REQUEST_NULL);
+    std::vector<MPI_Request> send_requests(2 * sends.size(), MPI_REQUEST_NULL);
     int error = MPI_SUCCESS;
     std::uint64_t held = 0;
     for (std::size_t k = 0; k < sends.size() && error == MPI_SUCCESS; ++k) {
-      const Message& message = sends[k].message;
-      error = MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_UINT32_T,
-                        sends[k].peer, tag, comm_, &send_requests[k]);
+      Message& message = sends[k].message;
+      MPI_Request* requests = &send_requests[2 * k];
+      error = arrival == Arrival::copy
+                  ? isend_piece_parts(message, sends[k].peer, tag, comm_, requests)
+                  : isend_piece(message, sends[k].peer, tag, comm_, requests);
       stats_.bytes_sent += message_bytes(message);
       held += message_bytes(message);
     }
@@ -207,7 +219,9 @@ class Compositor {
     for (std::size_t first = 0; first < receives.size() && error == MPI_SUCCESS;
          first += kPostedReceives) {
       const std::size_t count = std::min(kPostedReceives, receives.size() - first);
-      error = receive_batch(tag, std::span(receives).subspan(first, count), held, arrival);
+      const auto batch = std::span(receives).subspan(first, count);
+      error = arrival == Arrival::copy ? receive_parts_batch(tag, batch, held)
+                                       : receive_batch(tag, batch, held);
     }
     const int wait_error = MPI_Waitall(static_cast<int>(send_requests.size()), send_requests.data(),
                                        MPI_STATUSES_IGNORE);
@@ -215,8 +229,7 @@ class Compositor {
   }
 
   // `held`: bytes of this round's outgoing messages, for the peak of what the rank holds.
-  int receive_batch(int tag, std::span<const Incoming> receives, std::uint64_t held,
-                    Arrival arrival) {
+  int receive_batch(int tag, std::span<const Incoming> receives, std::uint64_t held) {
     if (buffers_.size() < receives.size()) buffers_.resize(receives.size());
     std::vector<MPI_Request> requests(receives.size(), MPI_REQUEST_NULL);
     for (std::size_t k = 0; k < receives.size(); ++k) {
@@ -245,13 +258,72 @@ class Compositor {
       const std::uint64_t bytes = piece_bytes(image_, piece);
       held += bytes;
       stats_.bytes_received += bytes;
-      const auto piece_rect =
-          arrival == Arrival::copy ? copy_piece(image_, piece) : composite_piece(image_, piece);
+      const auto piece_rect = composite_piece(image_, piece);
       if (!piece_rect) {
         cancel(requests);
         return MPI_ERR_OTHER;
       }
       rect_ = united(rect_, *piece_rect);
+    }
+    stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
+    return MPI_SUCCESS;
+  }
+
+  // The assembly's pieces: each header's receive posted at once, each body's when its header
+  // has come (into the image where the piece is its whole span), each piece taken in when its
+  // body has come. Requests [0, n) are the headers', [n, 2n) the bodies'.
+  int receive_parts_batch(int tag, std::span<const Incoming> receives, std::uint64_t held) {
+    const std::size_t n = receives.size();
+    if (buffers_.size() < n) buffers_.resize(n);
+    std::vector<MPI_Request> requests(2 * n, MPI_REQUEST_NULL);
+    std::vector<PartsArrival> arrivals(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      ReceiveBuffer& buffer = buffers_[k];
+      buffer.reserve(piece_capacity(image_, receives[k].span));
+      if (int error = MPI_Irecv(buffer.words.get(), static_cast<int>(kFirstPartWords), MPI_UINT32_T,
+                                receives[k].peer, tag, comm_, &requests[k]);
+          error != MPI_SUCCESS) {
+        cancel(requests);
+        return error;
+      }
+    }
+    for (std::size_t pending = n; pending > 0;) {
+      int index = MPI_UNDEFINED;
+      MPI_Status status;
+      if (int error =
+              MPI_Waitany(static_cast<int>(requests.size()), requests.data(), &index, &status);
+          error != MPI_SUCCESS || index == MPI_UNDEFINED) {
+        cancel(requests);
+        return error != MPI_SUCCESS ? error : MPI_ERR_REQUEST;
+      }
+      int count = 0;
+      MPI_Get_count(&status, MPI_UINT32_T, &count);
+      const auto k = static_cast<std::size_t>(index) % n;
+      const Incoming& incoming = receives[k];
+      const bool header = static_cast<std::size_t>(index) < n;
+      if (header) {
+        if (int error =
+                post_piece_body(image_, incoming.span, buffers_[k], static_cast<std::size_t>(count),
+                                incoming.peer, tag, comm_, &requests[n + k], arrivals[k]);
+            error != MPI_SUCCESS) {
+          cancel(requests);
+          return error;
+        }
+        if (arrivals[k].body_words > 0) continue;  // its body is on the way
+      }
+      const std::size_t body = header ? 0 : static_cast<std::size_t>(count);
+      const std::uint64_t bytes = piece_bytes(
+          image_, {buffers_[k].words.get(), arrivals[k].header_words + arrivals[k].body_words});
+      held += bytes;
+      stats_.bytes_received += bytes;
+      const auto piece_rect =
+          take_piece_body(image_, incoming.span, buffers_[k], arrivals[k], body);
+      if (!piece_rect) {
+        cancel(requests);
+        return MPI_ERR_OTHER;
+      }
+      rect_ = united(rect_, *piece_rect);
+      --pending;
     }
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
     return MPI_SUCCESS;

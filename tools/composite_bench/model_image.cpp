@@ -140,7 +140,8 @@ render::PixelRect active_rect(const ModelImage& image, render::PixelRect within)
   return rect;
 }
 
-ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint) {
+ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span,
+                            render::PixelRect hint) {
   auto piece = std::make_unique<ModelPiece>();
   std::uint64_t runs = 0;
   render::PixelRect sent_rect;
@@ -165,19 +166,54 @@ ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, rende
                                   render::kPixelWords * std::uint64_t{span.size()});
   const PixelCosts& costs = image.settings->costs;
   const std::uint64_t scanned = pixels_in(span, hint, image.width);
+  // One run goes from the image itself: its pixels are scanned, not copied.
+  const double encode = runs == 1 ? costs.scan : costs.encode;
   inject_compute(static_cast<double>(scanned - std::min(scanned, piece->pixels)) * costs.scan +
-                 static_cast<double>(piece->pixels) * costs.encode);
+                 static_cast<double>(piece->pixels) * encode);
   return ModelMessage(std::move(piece), image.settings->byte_scale);
+}
+
+int isend_piece(ModelMessage& message, int peer, int tag, MPI_Comm comm, MPI_Request* request) {
+  return MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_UINT32_T, peer, tag, comm,
+                   request);
+}
+
+int isend_piece_parts(ModelMessage& message, int peer, int tag, MPI_Comm comm,
+                      MPI_Request requests[2]) {
+  if (int rc = MPI_Isend(message.data(), static_cast<int>(kAddressWords), MPI_UINT32_T, peer, tag,
+                         comm, &requests[0]);
+      rc != MPI_SUCCESS)
+    return rc;
+  if (message.size() == kAddressWords) return MPI_SUCCESS;
+  return MPI_Isend(message.data() + kAddressWords, static_cast<int>(message.size() - kAddressWords),
+                   MPI_UINT32_T, peer, tag, comm, &requests[1]);
+}
+
+int post_piece_body(ModelImage& image, render::PixelSpan span, render::ReceiveBuffer& buffer,
+                    std::size_t header_words, int peer, int tag, MPI_Comm comm,
+                    MPI_Request* request, render::PartsArrival& arrival) {
+  if (header_words != kAddressWords) return MPI_ERR_OTHER;
+  const ModelPiece& piece = peek_piece({buffer.words.get(), header_words});
+  arrival.header_words = header_words;
+  arrival.body_words = scaled_words(piece.words, image.settings->byte_scale) - kAddressWords;
+  arrival.in_place = piece.pixels == span.size();
+  if (arrival.body_words == 0) return MPI_SUCCESS;
+  return MPI_Irecv(buffer.words.get() + header_words, static_cast<int>(arrival.body_words),
+                   MPI_UINT32_T, peer, tag, comm, request);
+}
+
+std::optional<render::PixelRect> take_piece_body(ModelImage& image, render::PixelSpan,
+                                                 const render::ReceiveBuffer& buffer,
+                                                 render::PartsArrival& arrival,
+                                                 std::size_t body_words) {
+  if (body_words != arrival.body_words) return std::nullopt;
+  return take_in(image, {buffer.words.get(), arrival.header_words + arrival.body_words},
+                 arrival.in_place ? 0.0 : image.settings->costs.copy);
 }
 
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message) {
   return take_in(image, message, image.settings->costs.composite);
-}
-
-std::optional<render::PixelRect> copy_piece(ModelImage& image,
-                                            std::span<const std::uint32_t> message) {
-  return take_in(image, message, image.settings->costs.copy);
 }
 
 }  // namespace tetray::composite_bench

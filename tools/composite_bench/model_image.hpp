@@ -12,9 +12,13 @@
 //
 // Computation between MPI calls is injected, not run: each kernel's pixels times the per-pixel
 // cost measured on this machine (`PixelCosts`), as simulated time on the rank's host. Scanned
-// pixels cost `scan`, active pixels written into a message `encode` (the dense encoding's cost,
-// whose scanning is part of it), received ones `composite`, or `copy` in the assembly.
+// pixels cost `scan`, active pixels written into a message `encode` (the copying encoder's cost,
+// whose scanning is part of it), received ones `composite`, or `copy` in the assembly. A piece
+// whose active pixels are one run is sent from the image without the copies, as the real
+// compositor sends it (outgoing_piece): its pixels cost only their scan.
 #pragma once
+
+#include <mpi.h>
 
 #include <cstdint>
 #include <memory>
@@ -22,6 +26,7 @@
 #include <span>
 #include <vector>
 
+#include "render/composite/composite_codec.hpp"
 #include "render/composite/composite_region.hpp"
 
 namespace tetray::composite_bench {
@@ -84,11 +89,23 @@ render::PixelRect active_rect(const ModelImage& image, render::PixelRect within)
 inline render::PixelRect image_rect(const ModelImage& image) {
   return {0, 0, image.width, image.height};
 }
-ModelMessage encode_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint);
+ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span,
+                            render::PixelRect hint);
+int isend_piece(ModelMessage& message, int peer, int tag, MPI_Comm comm, MPI_Request* request);
+// The assembly's two parts: the piece's address as the header, the rest of its scaled size as
+// the body. A piece that is its whole span is taken in without the copy's cost, as the real
+// one lands in the image.
+int isend_piece_parts(ModelMessage& message, int peer, int tag, MPI_Comm comm,
+                      MPI_Request requests[2]);
+int post_piece_body(ModelImage& image, render::PixelSpan span, render::ReceiveBuffer& buffer,
+                    std::size_t header_words, int peer, int tag, MPI_Comm comm,
+                    MPI_Request* request, render::PartsArrival& arrival);
+std::optional<render::PixelRect> take_piece_body(ModelImage& image, render::PixelSpan span,
+                                                 const render::ReceiveBuffer& buffer,
+                                                 render::PartsArrival& arrival,
+                                                 std::size_t body_words);
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
                                                  std::span<const std::uint32_t> message);
-std::optional<render::PixelRect> copy_piece(ModelImage& image,
-                                            std::span<const std::uint32_t> message);
 std::uint64_t message_bytes(const ModelMessage& message);
 std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span);
 std::uint64_t piece_bytes(const ModelImage& image, std::span<const std::uint32_t> piece);

@@ -3,6 +3,8 @@
 // whatever rank count mpirun gives (ctest runs 1, 2, 3, 4, 5 and 8).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -153,6 +155,27 @@ TEST_P(CompositeMpi, VeryUnequalWork) {
   composite_and_check(image, 0, "unequal work");
 }
 
+// Every rank covers whole rows, without holes, of a band of the image (another band per rank,
+// overlapping): the assembly's pieces are then single runs that start or end inside their span,
+// which must not be taken as a whole span in place, beside whole spans that are.
+TEST_P(CompositeMpi, BandsOfWholeRowsMatchBruteForce) {
+  const World w = world();
+  constexpr int kWidth = 61, kHeight = 47;
+  Framebuffer image(kWidth, kHeight);
+  const int y0 = (7 * w.rank) % kHeight, y1 = std::min(kHeight, y0 + 5 + 11 * (w.rank % 3));
+  for (int j = y0; j < y1; ++j) {
+    for (int i = 0; i < kWidth; ++i) {
+      const std::size_t p = image.index(i, j);
+      image.depth[p] = 1.0f + 0.25f * static_cast<float>((i + j + w.rank) % 5);
+      image.hit[p] = static_cast<std::uint32_t>(p) * static_cast<std::uint32_t>(w.size) +
+                     static_cast<std::uint32_t>(w.rank);
+      for (int c = 0; c < 4; ++c) image.rgba[4 * p + c] = 0.1f * static_cast<float>(c + w.rank);
+    }
+  }
+  for (int root = 0; root < std::min(w.size, 2); ++root)
+    composite_and_check(image, root, "bands, root " + std::to_string(root));
+}
+
 TEST_P(CompositeMpi, DenseImagesSendWhatTheScheduleSays) {
   const World w = world();
   const Framebuffer image = random_image(257, 131, 3, w.rank, w.size, Coverage::full);
@@ -189,6 +212,45 @@ INSTANTIATE_TEST_SUITE_P(Algorithms, CompositeMpi,
                                            CompositeAlgorithm::binary_swap,
                                            CompositeAlgorithm::radix_k, CompositeAlgorithm::gather),
                          algorithm_name);
+
+// A piece sent from the image in place (its active pixels one run) and one sent as copied words
+// arrive, through MPI, as the words the encoder writes for the same span; only the one-run piece
+// goes in place. On each rank, to itself.
+TEST(OutgoingPiece, ArrivesAsTheEncodedWordsInPlaceOrCopied) {
+  Framebuffer image(37, 40);
+  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+    image.rgba[4 * p] = 0.25f * static_cast<float>(p % 7);
+    image.rgba[4 * p + 3] = 1.0f;
+    image.depth[p] = 1.0f + static_cast<float>(p);
+    image.hit[p] = static_cast<std::uint32_t>(3 * p);
+  }
+  const PixelSpan one_run{30, 1300};
+  Framebuffer holes = image;  // the same with a background pixel in every row: a run per row
+  for (int j = 0; j < holes.height; ++j) {
+    holes.depth[holes.index(5, j)] = std::numeric_limits<float>::infinity();
+    holes.hit[holes.index(5, j)] = kNoHit;
+  }
+  for (const Framebuffer* source : {&image, &holes}) {
+    OutgoingPiece piece = outgoing_piece(*source, one_run, active_rect(*source));
+    EXPECT_EQ(piece.in_place(), source == &image);
+    const PieceMessage expected = encode_piece(*source, one_run, active_rect(*source));
+    EXPECT_EQ(message_bytes(piece), expected.size() * sizeof(std::uint32_t));
+    std::vector<std::uint32_t> received(expected.size() + 8, 0xdeadbeef);
+    MPI_Request requests[2];
+    ASSERT_EQ(MPI_Irecv(received.data(), static_cast<int>(received.size()), MPI_UINT32_T, 0, 5,
+                        MPI_COMM_SELF, &requests[0]),
+              MPI_SUCCESS);
+    ASSERT_EQ(isend_piece(piece, 0, 5, MPI_COMM_SELF, &requests[1]), MPI_SUCCESS);
+    MPI_Status statuses[2];
+    ASSERT_EQ(MPI_Waitall(2, requests, statuses), MPI_SUCCESS);
+    int count = 0;
+    MPI_Get_count(&statuses[0], MPI_UINT32_T, &count);
+    ASSERT_EQ(static_cast<std::size_t>(count), expected.size());
+    EXPECT_TRUE(std::equal(expected.begin(), expected.end(), received.begin()));
+    const PieceMessage wire = piece.wire();
+    EXPECT_TRUE(std::equal(expected.begin(), expected.end(), wire.begin(), wire.end()));
+  }
+}
 
 TEST(CompositeOneRank, ReturnsAtOnceWithoutCopies) {
   Framebuffer image = random_image(64, 48, 2, 0, 1, Coverage::random_rect);
