@@ -243,18 +243,9 @@ class Compositor {
       }
     }
     for (std::size_t done = 0; done < receives.size(); ++done) {
-      int index = MPI_UNDEFINED;
-      MPI_Status status;
-      if (int error =
-              MPI_Waitany(static_cast<int>(requests.size()), requests.data(), &index, &status);
-          error != MPI_SUCCESS || index == MPI_UNDEFINED) {
-        cancel(requests);
-        return error != MPI_SUCCESS ? error : MPI_ERR_REQUEST;
-      }
-      int count = 0;
-      MPI_Get_count(&status, MPI_UINT32_T, &count);
-      const std::span<const std::uint32_t> piece(buffers_[std::size_t(index)].words.get(),
-                                                 static_cast<std::size_t>(count));
+      std::size_t index = 0, count = 0;
+      if (int error = wait_any(requests, index, count); error != MPI_SUCCESS) return error;
+      const std::span<const std::uint32_t> piece(buffers_[index].words.get(), count);
       const std::uint64_t bytes = piece_bytes(image_, piece);
       held += bytes;
       stats_.bytes_received += bytes;
@@ -288,30 +279,21 @@ class Compositor {
       }
     }
     for (std::size_t pending = n; pending > 0;) {
-      int index = MPI_UNDEFINED;
-      MPI_Status status;
-      if (int error =
-              MPI_Waitany(static_cast<int>(requests.size()), requests.data(), &index, &status);
-          error != MPI_SUCCESS || index == MPI_UNDEFINED) {
-        cancel(requests);
-        return error != MPI_SUCCESS ? error : MPI_ERR_REQUEST;
-      }
-      int count = 0;
-      MPI_Get_count(&status, MPI_UINT32_T, &count);
-      const auto k = static_cast<std::size_t>(index) % n;
+      std::size_t index = 0, count = 0;
+      if (int error = wait_any(requests, index, count); error != MPI_SUCCESS) return error;
+      const std::size_t k = index % n;
       const Incoming& incoming = receives[k];
-      const bool header = static_cast<std::size_t>(index) < n;
+      const bool header = index < n;
       if (header) {
-        if (int error =
-                post_piece_body(image_, incoming.span, buffers_[k], static_cast<std::size_t>(count),
-                                incoming.peer, tag, comm_, &requests[n + k], arrivals[k]);
+        if (int error = post_piece_body(image_, incoming.span, buffers_[k], count, incoming.peer,
+                                        tag, comm_, &requests[n + k], arrivals[k]);
             error != MPI_SUCCESS) {
           cancel(requests);
           return error;
         }
         if (arrivals[k].body_words > 0) continue;  // its body is on the way
       }
-      const std::size_t body = header ? 0 : static_cast<std::size_t>(count);
+      const std::size_t body = header ? 0 : count;
       const std::uint64_t bytes = piece_bytes(
           image_, {buffers_[k].words.get(), arrivals[k].header_words + arrivals[k].body_words});
       held += bytes;
@@ -326,6 +308,24 @@ class Compositor {
       --pending;
     }
     stats_.peak_message_bytes = std::max(stats_.peak_message_bytes, held);
+    return MPI_SUCCESS;
+  }
+
+  // Waits for any of `requests`: its index and the 32-bit words it received, or the error, the
+  // receives still pending cancelled.
+  static int wait_any(std::vector<MPI_Request>& requests, std::size_t& index, std::size_t& words) {
+    int which = MPI_UNDEFINED;
+    MPI_Status status;
+    const int error =
+        MPI_Waitany(static_cast<int>(requests.size()), requests.data(), &which, &status);
+    if (error != MPI_SUCCESS || which == MPI_UNDEFINED) {
+      cancel(requests);
+      return error != MPI_SUCCESS ? error : MPI_ERR_REQUEST;
+    }
+    int count = 0;
+    MPI_Get_count(&status, MPI_UINT32_T, &count);
+    index = static_cast<std::size_t>(which);
+    words = static_cast<std::size_t>(count);
     return MPI_SUCCESS;
   }
 
