@@ -230,19 +230,27 @@ void copy_run(Framebuffer& image, const Run& run) {
   std::memcpy(image.hit.data() + run.position, run.hit, run.count * sizeof(std::uint32_t));
 }
 
-// Blocks of 32-bit words at their distances from `base` as one committed datatype.
-int run_type(std::span<const void* const> blocks, std::span<const int> lengths, const void* base,
-             MPI_Datatype& type) {
+// One committed datatype of 32-bit words at their distances from `base`: the `header_words`
+// words at `header` (none when null), then the span's colors, depths and keys where the image
+// holds them. What a piece sent or received in place travels as.
+int span_type(const std::uint32_t* header, std::size_t header_words, const Framebuffer& image,
+              PixelSpan span, const void* base, MPI_Datatype& type) {
+  const std::size_t n = span.size();
+  const void* blocks[] = {header, image.rgba.data() + 4 * std::size_t{span.begin},
+                          image.depth.data() + span.begin, image.hit.data() + span.begin};
+  const int lengths[] = {static_cast<int>(header_words), static_cast<int>(4 * n),
+                         static_cast<int>(n), static_cast<int>(n)};
+  const std::size_t first = header != nullptr ? 0 : 1;
   MPI_Aint origin = 0;
   MPI_Get_address(base, &origin);
   MPI_Aint displacements[4];
-  for (std::size_t k = 0; k < blocks.size(); ++k) {
+  for (std::size_t k = first; k < 4; ++k) {
     MPI_Aint at = 0;
     MPI_Get_address(blocks[k], &at);
     displacements[k] = at - origin;
   }
-  if (int rc = MPI_Type_create_hindexed(static_cast<int>(blocks.size()), lengths.data(),
-                                        displacements, MPI_UINT32_T, &type);
+  if (int rc = MPI_Type_create_hindexed(static_cast<int>(4 - first), lengths + first,
+                                        displacements + first, MPI_UINT32_T, &type);
       rc != MPI_SUCCESS)
     return rc;
   return MPI_Type_commit(&type);
@@ -292,14 +300,8 @@ PieceMessage OutgoingPiece::wire() const {
 }
 
 int OutgoingPiece::make_run_type(const std::uint32_t* header, const void* base) {
-  const std::size_t n = run_.size();
-  const void* blocks[] = {header, image_->rgba.data() + 4 * std::size_t{run_.begin},
-                          image_->depth.data() + run_.begin, image_->hit.data() + run_.begin};
-  int lengths[] = {static_cast<int>(words_.size()), static_cast<int>(4 * n), static_cast<int>(n),
-                   static_cast<int>(n)};
-  const int first = header != nullptr ? 0 : 1;
   if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
-  return run_type(std::span(blocks).subspan(first), std::span(lengths).subspan(first), base, type_);
+  return span_type(header, words_.size(), *image_, run_, base, type_);
 }
 
 int OutgoingPiece::isend(int peer, int tag, MPI_Comm comm, MPI_Request* request) {
@@ -348,14 +350,10 @@ int post_piece_body(Framebuffer& image, PixelSpan span, ReceiveBuffer& buffer,
     return MPI_Irecv(buffer.words.get() + header_words, static_cast<int>(arrival.body_words),
                      MPI_UINT32_T, peer, tag, comm, request);
   }
-  // The span's colors, depths and keys where the image holds them.
-  const std::size_t n = span.size();
-  const void* blocks[] = {image.rgba.data() + 4 * std::size_t{span.begin},
-                          image.depth.data() + span.begin, image.hit.data() + span.begin};
-  const int lengths[] = {static_cast<int>(4 * n), static_cast<int>(n), static_cast<int>(n)};
-  if (int rc = run_type(blocks, lengths, blocks[0], arrival.type); rc != MPI_SUCCESS) return rc;
-  return MPI_Irecv(image.rgba.data() + 4 * std::size_t{span.begin}, 1, arrival.type, peer, tag,
-                   comm, request);
+  float* const colors = image.rgba.data() + 4 * std::size_t{span.begin};
+  if (int rc = span_type(nullptr, 0, image, span, colors, arrival.type); rc != MPI_SUCCESS)
+    return rc;
+  return MPI_Irecv(colors, 1, arrival.type, peer, tag, comm, request);
 }
 
 std::optional<PixelRect> take_piece_body(Framebuffer& image, PixelSpan, const ReceiveBuffer& buffer,
@@ -364,14 +362,9 @@ std::optional<PixelRect> take_piece_body(Framebuffer& image, PixelSpan, const Re
   const std::span<const std::uint32_t> message(buffer.words.get(),
                                                arrival.header_words + arrival.body_words);
   if (!arrival.in_place) return copy_piece(image, message);
-  // The pixels are in place; the header's rectangle must lie in the image.
-  const std::uint32_t* header = buffer.words.get();
-  const auto width = static_cast<std::uint32_t>(image.width);
-  const auto height = static_cast<std::uint32_t>(image.height);
-  if (header[3] > header[5] || header[5] > width || header[4] > header[6] || header[6] > height)
-    return std::nullopt;
-  return PixelRect{static_cast<int>(header[3]), static_cast<int>(header[4]),
-                   static_cast<int>(header[5]), static_cast<int>(header[6])};
+  // The pixels are in place (the body is not in `message`): the header's rectangle must lie in
+  // the image.
+  return header_rect(message, image);
 }
 
 std::optional<PixelRect> composite_piece(Framebuffer& image,

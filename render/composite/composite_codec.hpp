@@ -81,8 +81,8 @@ class OutgoingPiece {
   int isend_parts(int peer, int tag, MPI_Comm comm, MPI_Request requests[2]);
 
  private:
-  // The run's three arrays, after `header` words when given, as one datatype of words at their
-  // distances from `base` (into type_).
+  // The run's three arrays, after the header words when `header` is given, as one datatype of
+  // words at their distances from `base` (into type_).
   int make_run_type(const std::uint32_t* header, const void* base);
 
   PieceMessage words_;
