@@ -11,7 +11,10 @@
 #include <array>
 #include <climits>
 #include <cstdint>
+#include <exception>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "render/composite/composite_region.hpp"
@@ -53,19 +56,39 @@ bool well_formed(const BasicFragmentImage<F>& image) {
   return std::is_sorted(image.begin.begin(), image.begin.end());
 }
 
-// Every rank's verdict on the shapes and the largest message, the same on every rank:
-// MPI_SUCCESS, MPI_ERR_SIZE or MPI_ERR_COUNT.
-int agree_on_shapes(bool ok, int width, int height, std::uint64_t largest, MPI_Comm comm,
-                    int& verdict) {
-  long long seen[6] = {
-      ok ? 0 : 1, width,   -width,
-      height,     -height, static_cast<long long>(std::min<std::uint64_t>(largest, LLONG_MAX))};
-  if (int rc = MPI_Allreduce(MPI_IN_PLACE, seen, 6, MPI_LONG_LONG, MPI_MAX, comm);
+// Every rank's verdict on the shapes, its buffers and the largest message, the same on every
+// rank: MPI_SUCCESS, MPI_ERR_SIZE, MPI_ERR_NO_MEM or MPI_ERR_COUNT.
+int agree_on_shapes(bool ok, bool allocated, int width, int height, std::uint64_t largest,
+                    MPI_Comm comm, int& verdict) {
+  long long seen[7] = {ok ? 0 : 1,
+                       allocated ? 0 : 1,
+                       width,
+                       -width,
+                       height,
+                       -height,
+                       static_cast<long long>(std::min<std::uint64_t>(largest, LLONG_MAX))};
+  if (int rc = MPI_Allreduce(MPI_IN_PLACE, seen, 7, MPI_LONG_LONG, MPI_MAX, comm);
       rc != MPI_SUCCESS)
     return rc;
-  const bool same = seen[1] == -seen[2] && seen[3] == -seen[4];
-  verdict = seen[0] != 0 || !same ? MPI_ERR_SIZE : seen[5] > INT_MAX ? MPI_ERR_COUNT : MPI_SUCCESS;
+  const bool same = seen[2] == -seen[3] && seen[4] == -seen[5];
+  verdict = seen[0] != 0 || !same ? MPI_ERR_SIZE
+            : seen[1] != 0        ? MPI_ERR_NO_MEM
+            : seen[6] > INT_MAX   ? MPI_ERR_COUNT
+                                  : MPI_SUCCESS;
   return MPI_SUCCESS;
+}
+
+// Room for every other rank's fragments of this rank's stripe (`in`), in the workspace.
+template <typename F>
+void reserve_receives(const std::vector<StripeHeader>& in, int rank, FragmentWorkspace<F>& work) {
+  work.offsets.resize(in.size());
+  work.fragments.resize(in.size());
+  for (std::size_t r = 0; r < in.size(); ++r) {
+    if (in[r].count == 0 || r == static_cast<std::size_t>(rank)) continue;
+    const std::size_t offset_count = in[r].last - in[r].first + 1;
+    if (work.offsets[r].size() < offset_count) work.offsets[r].resize(offset_count);
+    if (work.fragments[r].size() < in[r].count) work.fragments[r].resize(in[r].count);
+  }
 }
 
 template <typename F>
@@ -87,10 +110,9 @@ class StripeExchange {
   StripeExchange& operator=(const StripeExchange&) = delete;
 
   // The runs of this rank's stripe, every rank's (this one's where they lie) in rank order.
+  // The workspace holds room for every receive (reserve_receives).
   int exchange(const std::vector<StripeHeader>& out, const std::vector<StripeHeader>& in,
                std::vector<FragmentRun<F>>& runs) {
-    workspace_.offsets.resize(ranks_);
-    workspace_.fragments.resize(ranks_);
     std::vector<MPI_Request> requests;
     int rc = MPI_SUCCESS;
     for (std::size_t r = 0; r < ranks_ && rc == MPI_SUCCESS; ++r) {
@@ -122,8 +144,6 @@ class StripeExchange {
     LargeArray<std::uint32_t>& offsets = workspace_.offsets[r];
     LargeArray<F>& fragments = workspace_.fragments[r];
     const std::size_t offset_count = h.last - h.first + 1;
-    if (offsets.size() < offset_count) offsets.resize(offset_count);
-    if (fragments.size() < h.count) fragments.resize(h.count);
     requests.resize(requests.size() + 2, MPI_REQUEST_NULL);
     stats_.bytes_received += offset_count * sizeof(std::uint32_t) + h.count * sizeof(F);
     const int peer = static_cast<int>(r);
@@ -223,18 +243,20 @@ int gather_stripes(const StripePixels& mine, Framebuffer& out, std::size_t pixel
   return rc;
 }
 
-// Where this rank blends its stripe: in place in the root's image, which is made the right
-// size first, or in the workspace.
+// Where this rank blends its stripe: in place in the root's image when it has the right size,
+// in a new image (`fresh`, which becomes the root's image once every rank has agreed, so that
+// an error leaves the image alone) otherwise; in the workspace on the other ranks.
 template <typename F>
 StripePixels stripe_pixels(bool is_root, int width, int height, PixelSpan stripe, Framebuffer& out,
-                           FragmentWorkspace<F>& workspace) {
+                           std::optional<Framebuffer>& fresh, FragmentWorkspace<F>& workspace) {
   if (is_root) {
     const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    if (out.width != width || out.height != height || out.pixel_count() != pixels ||
-        out.rgba.size() != 4 * pixels || out.hit.size() != pixels)
-      out = Framebuffer(width, height);
-    return {out.rgba.data() + 4 * std::size_t{stripe.begin}, out.depth.data() + stripe.begin,
-            out.hit.data() + stripe.begin};
+    const bool fits = out.width == width && out.height == height && out.pixel_count() == pixels &&
+                      out.rgba.size() == 4 * pixels && out.hit.size() == pixels;
+    if (!fits) fresh.emplace(width, height);
+    Framebuffer& image = fits ? out : *fresh;
+    return {image.rgba.data() + 4 * std::size_t{stripe.begin}, image.depth.data() + stripe.begin,
+            image.hit.data() + stripe.begin};
   }
   const std::size_t n = stripe.size();
   if (workspace.depth.size() < n) {
@@ -265,23 +287,36 @@ int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int r
     out_headers[static_cast<std::size_t>(q)] = header_of(local, stripe_of(pixels, ranks, q));
     largest = std::max(largest, out_headers[static_cast<std::size_t>(q)].count);
   }
-  int verdict = MPI_SUCCESS;
-  if (int rc = agree_on_shapes(ok, local.width, local.height, largest, comm, verdict);
-      rc != MPI_SUCCESS || verdict != MPI_SUCCESS)
-    return rc != MPI_SUCCESS ? rc : verdict;
+  // The headers go both ways before the agreement (a malformed rank sends none), so that every
+  // buffer is allocated first: memory that runs out on one rank is agreed on too, instead of
+  // leaving the others waiting in the exchange.
   std::vector<StripeHeader> in_headers(out_headers.size());
   if (int rc = MPI_Alltoall(out_headers.data(), 3, MPI_UINT64_T, in_headers.data(), 3, MPI_UINT64_T,
                             comm);
       rc != MPI_SUCCESS)
     return rc;
+  const PixelSpan stripe = stripe_of(pixels, ranks, rank);
+  StripePixels mine{};
+  std::optional<Framebuffer> new_image;
+  bool allocated = true;
+  try {
+    if (ok) {
+      reserve_receives(in_headers, rank, kept);
+      mine = stripe_pixels(rank == root, local.width, local.height, stripe, out, new_image, kept);
+    }
+  } catch (const std::exception&) {
+    allocated = false;
+  }
+  int verdict = MPI_SUCCESS;
+  if (int rc = agree_on_shapes(ok, allocated, local.width, local.height, largest, comm, verdict);
+      rc != MPI_SUCCESS || verdict != MPI_SUCCESS)
+    return rc != MPI_SUCCESS ? rc : verdict;
+  if (new_image) out = std::move(*new_image);  // its arrays, which `mine` points into, move along
   std::vector<FragmentRun<F>> runs;
   {
     StripeExchange<F> exchange(local, comm, rank, ranks, kept, counted);
     if (int rc = exchange.exchange(out_headers, in_headers, runs); rc != MPI_SUCCESS) return rc;
   }
-  const PixelSpan stripe = stripe_of(pixels, ranks, rank);
-  const StripePixels mine =
-      stripe_pixels(rank == root, local.width, local.height, stripe, out, kept);
   blend_stripe<F>(runs, stripe, options.max_layers, mine);
   if (options.stripe_depths) options.stripe_depths(stripe.begin, {mine.depth, stripe.size()});
   if (stats != nullptr) *stats = counted;
