@@ -65,10 +65,12 @@ struct FragmentWorkspace {
 
 // Collective over `comm`: on `root`, `out` becomes the merged image of all ranks' fragments
 // (the same size on every rank; its storage is reused when it has that size); elsewhere it is
-// left alone. Returns the same on every rank: MPI_SUCCESS, MPI_ERR_SIZE when the ranks' images
-// differ in size or are malformed, MPI_ERR_NO_MEM when a rank could not allocate its buffers,
-// MPI_ERR_COUNT when one rank's fragments of one stripe would not fit one MPI count, or the MPI
-// error code.
+// left alone. Returns the same on every rank: MPI_SUCCESS, MPI_ERR_ROOT when a rank names a
+// root out of range or another than the others, MPI_ERR_SIZE when the ranks' images differ in
+// size or are malformed, MPI_ERR_NO_MEM when a rank could not allocate its buffers or ran out of
+// memory blending its stripe, MPI_ERR_COUNT when one rank's fragments of one stripe would not
+// fit one MPI count, MPI_ERR_OTHER when options.stripe_depths threw on a rank, or the MPI error
+// code. After an error `out` holds no image to use (on the root it may be partly blended).
 template <typename F>
 int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int root,
                         Framebuffer& out, const FragmentCompositeOptions& options = {},

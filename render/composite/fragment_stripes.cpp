@@ -12,11 +12,13 @@
 #include <climits>
 #include <cstdint>
 #include <exception>
+#include <new>
 #include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "render/composite/composite_agreement.hpp"
 #include "render/composite/composite_region.hpp"
 #include "render/composite/fragment_composite.hpp"
 #include "render/composite/fragment_merge.hpp"
@@ -54,28 +56,6 @@ bool well_formed(const BasicFragmentImage<F>& image) {
   if (image.begin.size() != pixels + 1 || image.begin.front() != 0) return false;
   if (image.begin.back() != image.fragments.size()) return false;
   return std::is_sorted(image.begin.begin(), image.begin.end());
-}
-
-// Every rank's verdict on the shapes, its buffers and the largest message, the same on every
-// rank: MPI_SUCCESS, MPI_ERR_SIZE, MPI_ERR_NO_MEM or MPI_ERR_COUNT.
-int agree_on_shapes(bool ok, bool allocated, int width, int height, std::uint64_t largest,
-                    MPI_Comm comm, int& verdict) {
-  long long seen[7] = {ok ? 0 : 1,
-                       allocated ? 0 : 1,
-                       width,
-                       -width,
-                       height,
-                       -height,
-                       static_cast<long long>(std::min<std::uint64_t>(largest, LLONG_MAX))};
-  if (int rc = MPI_Allreduce(MPI_IN_PLACE, seen, 7, MPI_LONG_LONG, MPI_MAX, comm);
-      rc != MPI_SUCCESS)
-    return rc;
-  const bool same = seen[2] == -seen[3] && seen[4] == -seen[5];
-  verdict = seen[0] != 0 || !same ? MPI_ERR_SIZE
-            : seen[1] != 0        ? MPI_ERR_NO_MEM
-            : seen[6] > INT_MAX   ? MPI_ERR_COUNT
-                                  : MPI_SUCCESS;
-  return MPI_SUCCESS;
 }
 
 // Room for every other rank's fragments of this rank's stripe (`in`), in the workspace.
@@ -267,6 +247,51 @@ StripePixels stripe_pixels(bool is_root, int width, int height, PixelSpan stripe
   return {workspace.rgba.data(), workspace.depth.data(), workspace.hit.data()};
 }
 
+// The ranks' agreement before any fragment moves (composite_agreement.hpp), as
+// composite_fragments names its errors: MPI_SUCCESS, MPI_ERR_ROOT, MPI_ERR_SIZE, MPI_ERR_NO_MEM,
+// MPI_ERR_COUNT or the allreduce's error, the same on every rank.
+template <typename F>
+int agree(bool ok, bool allocated, const BasicFragmentImage<F>& local, int root,
+          std::uint64_t largest, int ranks, MPI_Comm comm) {
+  CompositeInputs mine;
+  mine.width = local.width;
+  mine.height = local.height;
+  mine.image_ok = ok;
+  mine.root = root;
+  mine.allocated = allocated;
+  mine.largest_message = largest;
+  CompositeAgreement agreed;
+  if (const int rc = agree_on(mine, ranks, comm, agreed); rc != MPI_SUCCESS) return rc;
+  return !agreed.root_ok      ? MPI_ERR_ROOT
+         : !agreed.images_ok  ? MPI_ERR_SIZE
+         : !agreed.allocated  ? MPI_ERR_NO_MEM
+         : !agreed.counts_fit ? MPI_ERR_COUNT
+                              : MPI_SUCCESS;
+}
+
+// Blends this rank's stripe and hands its depths to the hook; then every rank learns whether
+// any stripe failed (memory running out in the blend, a hook that throws) before the gather, so
+// that a rank that failed does not leave the others waiting there: MPI_SUCCESS, MPI_ERR_NO_MEM,
+// MPI_ERR_OTHER or the allreduce's error, the same on every rank.
+template <typename F>
+int blend_on_every_rank(std::span<const FragmentRun<F>> runs, PixelSpan stripe,
+                        const FragmentCompositeOptions& options, const StripePixels& mine,
+                        MPI_Comm comm) {
+  int blended = MPI_SUCCESS;
+  try {
+    blend_stripe<F>(runs, stripe, options.max_layers, mine);
+    if (options.stripe_depths) options.stripe_depths(stripe.begin, {mine.depth, stripe.size()});
+  } catch (const std::bad_alloc&) {
+    blended = MPI_ERR_NO_MEM;
+  } catch (...) {
+    blended = MPI_ERR_OTHER;
+  }
+  if (const int rc = MPI_Allreduce(MPI_IN_PLACE, &blended, 1, MPI_INT, MPI_MAX, comm);
+      rc != MPI_SUCCESS)
+    return rc;
+  return blended;
+}
+
 }  // namespace
 
 template <typename F>
@@ -307,18 +332,18 @@ int composite_fragments(const BasicFragmentImage<F>& local, MPI_Comm comm, int r
   } catch (const std::exception&) {
     allocated = false;
   }
-  int verdict = MPI_SUCCESS;
-  if (int rc = agree_on_shapes(ok, allocated, local.width, local.height, largest, comm, verdict);
-      rc != MPI_SUCCESS || verdict != MPI_SUCCESS)
-    return rc != MPI_SUCCESS ? rc : verdict;
+  if (const int verdict = agree(ok, allocated, local, root, largest, ranks, comm);
+      verdict != MPI_SUCCESS)
+    return verdict;
   if (new_image) out = std::move(*new_image);  // its arrays, which `mine` points into, move along
   std::vector<FragmentRun<F>> runs;
   {
     StripeExchange<F> exchange(local, comm, rank, ranks, kept, counted);
     if (int rc = exchange.exchange(out_headers, in_headers, runs); rc != MPI_SUCCESS) return rc;
   }
-  blend_stripe<F>(runs, stripe, options.max_layers, mine);
-  if (options.stripe_depths) options.stripe_depths(stripe.begin, {mine.depth, stripe.size()});
+  if (const int blended = blend_on_every_rank<F>(runs, stripe, options, mine, comm);
+      blended != MPI_SUCCESS)
+    return blended;
   if (stats != nullptr) *stats = counted;
   return ranks == 1 ? MPI_SUCCESS : gather_stripes(mine, out, pixels, root, rank, ranks, comm);
 }

@@ -12,8 +12,10 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <random>
 #include <span>
+#include <stdexcept>
 #include <tuple>
 
 #include "composite_test_images.hpp"
@@ -286,6 +288,45 @@ TEST(FragmentStripes, RefuseImagesOfDifferentSizesOnEveryRank) {
   Framebuffer out;
   EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, 0, out), MPI_ERR_SIZE);
   EXPECT_EQ(out.pixel_count(), 0u);
+}
+
+// A root out of range, or one rank naming another root than the others, is refused on every
+// rank before any fragment moves.
+TEST(FragmentStripes, RefuseARootOutOfRangeOrNotTheSameOnEveryRank) {
+  const auto w = world();
+  const FragmentImage image = rank_image(w.rank, 20, 3, 2);
+  Framebuffer out;
+  EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, w.size, out), MPI_ERR_ROOT);
+  EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, -1, out), MPI_ERR_ROOT);
+  if (w.size > 1) {
+    const int root = w.rank == w.size - 1 ? 1 : 0;
+    EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, root, out), MPI_ERR_ROOT);
+  }
+  EXPECT_EQ(out.pixel_count(), 0u);
+}
+
+// A rank whose stripe fails after the exchange (the depth hook throws; memory runs out) does not
+// leave the others waiting in the gather: every rank returns the failure, and the next
+// composite on the same ranks works.
+TEST(FragmentStripes, AFailedStripeOnOneRankIsAnErrorOnEveryRank) {
+  const auto w = world();
+  const FragmentImage image = rank_image(w.rank, 41, 13, 3);
+  const int failing = w.size - 1;
+  Framebuffer out;
+  for (const bool out_of_memory : {false, true}) {
+    FragmentCompositeOptions options;
+    options.stripe_depths = [&](std::size_t, std::span<float>) {
+      if (w.rank != failing) return;
+      if (out_of_memory) throw std::bad_alloc();
+      throw std::runtime_error("the hook failed");
+    };
+    EXPECT_EQ(composite_fragments(image, MPI_COMM_WORLD, 0, out, options),
+              out_of_memory ? MPI_ERR_NO_MEM : MPI_ERR_OTHER);
+  }
+  ASSERT_EQ(composite_fragments(image, MPI_COMM_WORLD, 0, out), MPI_SUCCESS);
+  if (w.rank == 0) {
+    EXPECT_EQ(out.pixel_count(), std::size_t{41 * 13});
+  }
 }
 
 }  // namespace
