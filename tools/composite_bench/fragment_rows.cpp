@@ -33,10 +33,14 @@ render::FragmentImage two_layers(const render::Framebuffer& image) {
   return out;
 }
 
-// The median over `repeat` runs of the slowest rank's time of `run` (collective).
-double median_ms(int repeat, MPI_Comm comm, const std::function<void()>& run) {
+// The median over `repeat` runs of the slowest rank's time of `run` (collective); prepare(),
+// untimed, comes before each: the copy of the image an opaque composite overwrites.
+double median_ms(
+    int repeat, MPI_Comm comm, const std::function<void()>& run,
+    const std::function<void()>& prepare = [] {}) {
   std::vector<double> times;
   for (int k = 0; k < repeat; ++k) {
+    prepare();
     MPI_Barrier(comm);
     double seconds = MPI_Wtime();
     run();
@@ -70,11 +74,13 @@ std::vector<FragmentRow> measure_fragments(const std::vector<int>& sizes,
       row.ranks = ranks;
       row.size = size;
       row.coverage = coverage_name(coverage);
-      row.opaque_ms = median_ms(repeat, comm, [&] {
-        flat = image;
-        if (render::composite(flat, comm, opaque, nullptr, &workspace) != MPI_SUCCESS)
-          MPI_Abort(comm, 1);
-      });
+      row.opaque_ms = median_ms(
+          repeat, comm,
+          [&] {
+            if (render::composite(flat, comm, opaque, nullptr, &workspace) != MPI_SUCCESS)
+              MPI_Abort(comm, 1);
+          },
+          [&] { flat = image; });
       row.fragments_ms = median_ms(repeat, comm, [&] {
         if (render::composite_fragments(layers, comm, 0, blended, {}, nullptr, &kept) !=
             MPI_SUCCESS)
