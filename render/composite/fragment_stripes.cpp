@@ -230,9 +230,7 @@ template <typename F>
 StripePixels stripe_pixels(bool is_root, int width, int height, PixelSpan stripe, Framebuffer& out,
                            std::optional<Framebuffer>& fresh, FragmentWorkspace<F>& workspace) {
   if (is_root) {
-    const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    const bool fits = out.width == width && out.height == height && out.pixel_count() == pixels &&
-                      out.rgba.size() == 4 * pixels && out.hit.size() == pixels;
+    const bool fits = has_shape(out, width, height);
     if (!fits) fresh.emplace(width, height);
     Framebuffer& image = fits ? out : *fresh;
     return {image.rgba.data() + 4 * std::size_t{stripe.begin}, image.depth.data() + stripe.begin,

@@ -37,6 +37,14 @@ struct Framebuffer {
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
 };
 
+// Whether `image` holds the storage of a width x height image (a moved-from one keeps its sizes
+// but not its storage).
+inline bool has_shape(const Framebuffer& image, int width, int height) {
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  return image.width == width && image.height == height && image.pixel_count() == pixels &&
+         image.rgba.size() == 4 * pixels && image.hit.size() == pixels;
+}
+
 // The depth-compositing rule shared by every compositor and every test: nearer depth wins,
 // equal depth goes to the smaller hit key.
 inline bool wins_over(float depth_a, std::uint32_t hit_a, float depth_b, std::uint32_t hit_b) {

@@ -272,16 +272,18 @@ void pack(const LayerSlots& slots, const Fragment* from, FragmentImage& to, int 
 void trace_into(Framebuffer& image, const TetVolume& volume, const Bvh& bvh, const Camera& camera,
                 std::span<const IsoSurface> surfaces, const TraceOptions& options,
                 TraceStats* stats, std::vector<Framebuffer>* shadow_terms) {
-  // A moved-from image keeps its sizes but not its storage.
-  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
-  if (image.width != camera.width || image.height != camera.height ||
-      image.pixel_count() != pixels || image.rgba.size() != 4 * pixels ||
-      image.hit.size() != pixels)
-    image = Framebuffer(camera.width, camera.height);
+  // The frame writes every pixel of the image and of each shadowing light's term (the
+  // background too), so their storage is kept from the frame before where it has the size: a new
+  // term per light and frame was 24 bytes a pixel allocated, filled and faulted in on one thread.
+  const auto keep_or_make = [&](Framebuffer& target) {
+    if (!has_shape(target, camera.width, camera.height))
+      target = Framebuffer(camera.width, camera.height);
+  };
+  keep_or_make(image);
   const bool lit = !options.lights.headlight_only();
   if (shadow_terms) {
     shadow_terms->resize(lit ? static_cast<std::size_t>(options.lights.shadow_count()) : 0);
-    for (Framebuffer& term : *shadow_terms) term = Framebuffer(camera.width, camera.height);
+    for (Framebuffer& term : *shadow_terms) keep_or_make(term);
   }
   with_frame(volume, bvh, camera, surfaces, options, [&](Frame& f, bool clipped) {
     f.shadow_terms = shadow_terms;

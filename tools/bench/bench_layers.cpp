@@ -40,7 +40,8 @@ void layered_frame(const render::TetVolume& volume, const render::Bvh& bvh,
                    const render::TraceOptions& options, render::LayerImage& layers,
                    render::Framebuffer& image) {
   render::trace_layers(layers, volume, bvh, camera, surfaces, options);
-  std::vector<float> depth(layers.color.pixel_count());
+  // As the adaptor does (render/parallel/scene_layers.cpp): the depths only for shadow rays.
+  std::vector<float> depth(layers.shadow_terms.empty() ? 0 : layers.color.pixel_count());
   for (int layer = 0; !layers.shadow_terms.empty() && layer < options.max_layers; ++layer) {
     render::layer_view_depths(layers.color, camera, layer, depth);
     render::keep_lit_layer_points(layers.shadow_terms, layer, depth);
@@ -67,12 +68,14 @@ LayerFigures measure_layers(const GyroidTwist& scene, const render::Camera& came
   std::array<render::IsoSurface, 2> opaque_pair = transparent;
   for (render::IsoSurface& s : opaque_pair) s.opacity = 1;
   render::Framebuffer image;
-  render::LayerImage layers;
+  // One layer image per configuration, kept from frame to frame as a scene's is in situ: shared,
+  // each frame would first regrow or shrink what the other configuration left.
+  render::LayerImage plain_layers, all_layers;
   const render::TraceOptions plain{}, all = all_modalities();
   const auto plain_frame = [&] {
     return time_ms([&] { render::trace_into(image, volume, bvh, camera, {&surface, 1}, plain); });
   };
-  const auto layered = [&](const render::TraceOptions& options) {
+  const auto layered = [&](const render::TraceOptions& options, render::LayerImage& layers) {
     return [&, options] {
       return time_ms(
           [&] { layered_frame(volume, bvh, camera, transparent, options, layers, image); });
@@ -81,15 +84,17 @@ LayerFigures measure_layers(const GyroidTwist& scene, const render::Camera& came
   const auto opaque_pair_frame = [&] {
     return time_ms([&] { render::trace_into(image, volume, bvh, camera, opaque_pair, plain); });
   };
-  plain_frame();  // warm-up
-  const std::array<double, 4> best = best_in_turn_ms<4>(
-      kRepetitions, {std::function<double()>(plain_frame),
-                     std::function<double()>(opaque_pair_frame), layered(plain), layered(all)});
+  // Warm-ups: the image and each layer image grown to their frames' sizes.
+  plain_frame();
+  layered(plain, plain_layers)();
+  layered(all, all_layers)();
+  const std::array<double, 4> best =
+      best_in_turn_ms<4>(kRepetitions, {std::function<double()>(plain_frame),
+                                        std::function<double()>(opaque_pair_frame),
+                                        layered(plain, plain_layers), layered(all, all_layers)});
   LayerFigures figures{best[0], best[1], best[2], best[3], 0, 0};
-  layered(plain)();
-  figures.layers_per_ray = per_ray(layers);
-  layered(all)();
-  figures.all_layers_per_ray = per_ray(layers);
+  figures.layers_per_ray = per_ray(plain_layers);
+  figures.all_layers_per_ray = per_ray(all_layers);
   return figures;
 }
 

@@ -281,5 +281,45 @@ TEST(TraceInto, AMovedFromImageGetsNewStorage) {
   EXPECT_EQ(image_difference(image, first), "");
 }
 
+// The image and the shadowing lights' terms are kept from frame to frame (trace_into reuses
+// their storage where the size fits): every frame writes each of their pixels, so a frame traced
+// into the last one's image and terms is the frame traced into fresh ones, bit for bit, whatever
+// the last one held (another camera, a clip box that left some pixels to the background).
+TEST(Shadows, TermsKeptFromTheFrameBeforeGiveTheFreshFrame) {
+  const GyroidTwist data = gyroid(8);
+  const RenderScene scene = load_scene(data.mesh.points, data.mesh.tets, data.field);
+  const auto surfaces = make_surfaces(std::vector<double>{0.0, 0.5});
+  render::TraceOptions with_box = shadowing_lights();
+  with_box.clip.has_box = true;
+  with_box.clip.box_lo = {-1.2, -1.2, -1.2};
+  with_box.clip.box_hi = {0.2, 1.2, 1.2};
+  const render::TraceOptions& clipped = with_box;
+  const render::TraceOptions plain = shadowing_lights();
+  render::Framebuffer kept_image;
+  std::vector<render::Framebuffer> kept_terms;
+  int frame = 0;
+  // Near (the volume fills the image), then far (background all around): the far frame's
+  // background lands on what the near one hit.
+  const render::Camera cameras[] = {look_at({0.4, 0.3, 1.6}, {0, 0, 0}, 60, kSide, kSide),
+                                    look_at({20, 15, 55}, {0, 0, 0}, 10, kSide, kSide)};
+  for (const render::TraceOptions* options : {&plain, &clipped}) {
+    for (const render::Camera& camera : cameras) {
+      render::trace_into(kept_image, scene.volume, scene.bvh, camera, surfaces, *options, nullptr,
+                         &kept_terms);
+      render::Framebuffer image;
+      std::vector<render::Framebuffer> terms;
+      render::trace_into(image, scene.volume, scene.bvh, camera, surfaces, *options, nullptr,
+                         &terms);
+      EXPECT_EQ(image_difference(kept_image, image), "") << "frame " << frame;
+      ASSERT_EQ(kept_terms.size(), terms.size());
+      for (std::size_t j = 0; j < terms.size(); ++j)
+        EXPECT_EQ(image_difference(kept_terms[j], terms[j]), "")
+            << "frame " << frame << " light " << j;
+      ++frame;
+    }
+  }
+  EXPECT_GE(frame, 4);
+}
+
 }  // namespace
 }  // namespace tetray::test
