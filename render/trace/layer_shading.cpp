@@ -42,9 +42,7 @@ void keep_lit_layer_points(std::span<const FragmentImage> shadow_terms, int laye
 void flatten_layers(FragmentImage& layers, const Camera& camera, Framebuffer& image) {
   // Every pixel is written below, so an image of the right size is reused as it is (allocating
   // a megapixel image each frame cost a third of the blend).
-  if (image.width != layers.width || image.height != layers.height ||
-      image.pixel_count() != layers.pixel_count() || image.rgba.size() != 4 * image.pixel_count() ||
-      image.hit.size() != image.pixel_count())
+  if (!has_shape(image, layers.width, layers.height))
     image = Framebuffer(layers.width, layers.height);
   tbb::parallel_for(std::size_t{0}, layers.pixel_count(), [&](std::size_t p) {
     const std::span<Fragment> pixel(layers.fragments.data() + layers.begin[p],

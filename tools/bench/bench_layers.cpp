@@ -76,9 +76,10 @@ LayerFigures measure_layers(const GyroidTwist& scene, const render::Camera& came
     return time_ms([&] { render::trace_into(image, volume, bvh, camera, {&surface, 1}, plain); });
   };
   const auto layered = [&](const render::TraceOptions& options, render::LayerImage& layers) {
-    return [&, options] {
+    // The layer image by address: the frame outlives this call's reference parameter.
+    return [&, options, target = &layers] {
       return time_ms(
-          [&] { layered_frame(volume, bvh, camera, transparent, options, layers, image); });
+          [&] { layered_frame(volume, bvh, camera, transparent, options, *target, image); });
     };
   };
   const auto opaque_pair_frame = [&] {
