@@ -6,6 +6,9 @@
 #                                  ranks: times per round and total, and the root images' hashes
 #   scripts/scaling.sh sweep       16 to 4,096 ranks (and past, where noted) on the cluster and
 #                                  Blue Gene/P platforms: sweep.csv and sweep.png
+#   scripts/scaling.sh bluegene    sparse 64-megapixel images on the Blue Gene/P in Z-order, the
+#                                  cube seen along z and along x, 1,024 to 32,768 ranks:
+#                                  bluegene_p_zorder.csv
 #   scripts/scaling.sh point PLATFORM RANKS [bench options...]   one simulated run
 #   scripts/scaling.sh costs       the per-pixel costs the sweep injects (scan, encode, composite,
 #                                  copy, ns), with TETRAY_SCALING_THREADS threads per rank
@@ -58,8 +61,7 @@ def key(c):
                 bit += 1
     return k
 nodes = sorted(((x, y, z) for x in range(8) for y in range(32) for z in range(32)), key=key)
-print(''.join(f'bgp-{x + 8 * y + 256 * z}
-' * 4 for x, y, z in nodes), end='')" >"$file"
+print(''.join(f'bgp-{x + 8 * y + 256 * z}\n' * 4 for x, y, z in nodes), end='')" >"$file"
   echo "$file"
 }
 
@@ -134,8 +136,9 @@ calibrate() {
 }
 
 # The sweep: model images (their computation injected from this machine's per-pixel costs),
-# every algorithm, sparse images of 1024^2, 2048^2 and 8192^2 on both platforms, dense ones of
-# 1024^2 and 2048^2 on the cluster (a dense 64-megapixel image is 1.6 GB on every rank). The
+# every algorithm, the rows in the order the compositor picks (automatic), sparse images of
+# 1024^2, 2048^2 and 8192^2 on both platforms, dense ones of 1024^2 and 2048^2 on the cluster (a
+# dense 64-megapixel image is 1.6 GB on every rank). The
 # plain gather to the root (P - 1 messages) only to 1,024 ranks. 1,000 and 3,000 ranks are not
 # powers of two (radix-k takes both whole, 3,000 = 2^3 3 5^3; binary swap folds its extra ranks).
 sweep() {
@@ -160,12 +163,34 @@ sweep() {
   scripts/scaling_report.py plot "$out"
 }
 
+# The Blue Gene/P table of docs/scaling.md: sparse 8192^2 images, radix-k, ranks in Z-order of
+# the torus, the cube seen along z (sparse) and along x (sparse_x), rows natural and interlaced
+# (natural only to 8,192 ranks: seen along z, its unbalanced rounds take the simulator hours
+# past that). 32,768 simulated ranks need more memory maps than Linux's default 65,536 (two per
+# rank): sysctl -w vm.max_map_count=262144.
+bluegene() {
+  local costs_ns
+  costs_ns=$(costs)
+  for ranks in 1024 4096 8192 16384 32768; do
+    local rows=(interlaced)
+    ((ranks <= 8192)) && rows+=(natural)
+    TETRAY_SCALING_MAPPING=zorder simulate bluegene_p "$ranks" \
+      "$out/bluegene_p_zorder_${ranks}.json" --model --costs-ns $costs_ns \
+      --coverage sparse sparse_x --sizes 8192 --byte-scale 64 --algorithms radix_k \
+      --rows "${rows[@]}" >/dev/null
+    echo "bluegene_p $ranks ranks: done ($SECONDS s)"
+  done
+  scripts/scaling_report.py rounds "$out" >"$out/bluegene_p_zorder.csv"
+  column -s, -t <"$out/bluegene_p_zorder.csv"
+}
+
 case "${1:-}" in
   calibrate) build_smpi; calibrate ;;
+  bluegene) build_smpi; bluegene ;;
   sweep) build_smpi; sweep ;;
   costs) [ -x build/bin/tetray-composite-bench ] || cmake --build build --target tetray-composite-bench
          costs ;;
   point) build_smpi; shift; platform=$1 ranks=$2; shift 2
          simulate "$platform" "$ranks" "$out/point.json" "$@" ;;
-  *) sed -n '2,13p' "$0" >&2; exit 2 ;;
+  *) sed -n '2,16p' "$0" >&2; exit 2 ;;
 esac

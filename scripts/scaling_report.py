@@ -3,6 +3,7 @@
 
   scaling_report.py calibration DIR   real_P.json against sim_P.json: CSV on stdout
   scaling_report.py sweep DIR         every PLATFORM_P_MODE.json: CSV on stdout
+  scaling_report.py rounds DIR        every bluegene_p_zorder_P.json, round by round: CSV
   scaling_report.py plot DIR          DIR/sweep.csv as DIR/sweep.png (log-log, time per ranks)
 """
 import csv
@@ -53,8 +54,8 @@ def calibration(folder):
 
 def sweep(folder):
     writer = csv.writer(sys.stdout)
-    writer.writerow(["platform", "ranks", "size", "mode", "algorithm", "total_ms", "rounds_ms",
-                     "assembly_ms", "sent_max_MB", "message_bytes_per_pixel"])
+    writer.writerow(["platform", "ranks", "size", "mode", "algorithm", "rows", "total_ms",
+                     "rounds_ms", "assembly_ms", "sent_max_MB", "message_bytes_per_pixel"])
     rows = []
     for path in glob.glob(os.path.join(folder, "*_*_*.json")):
         match = re.search(r"(cluster|bluegene_p)_(\d+)_(dense|sparse)\.json$", path)
@@ -62,10 +63,25 @@ def sweep(folder):
             continue
         for run in runs(path):
             rows.append([match.group(1), run["ranks"], run["size"], run["mode"], run["algorithm"],
-                         f"{run['median_ms']:.3f}", f"{run['composite_ms']:.3f}",
+                         run.get("rows", "natural"), f"{run['median_ms']:.3f}", f"{run['composite_ms']:.3f}",
                          f"{run['assembly_ms']:.3f}", f"{run['sent_max_bytes'] / 1e6:.2f}",
                          f"{run['message_bytes_per_pixel']:.2f}"])
     rows.sort(key=lambda r: (r[0], r[3], r[2], r[4], r[1]))
+    writer.writerows(rows)
+
+
+def rounds(folder):
+    writer = csv.writer(sys.stdout)
+    writer.writerow(["ranks", "size", "mode", "rows", "rounds_ms", "assembly_ms", "total_ms",
+                     "each_round_ms"])
+    rows = []
+    for path in glob.glob(os.path.join(folder, "bluegene_p_zorder_*.json")):
+        for run in runs(path):
+            radix_rounds = durations(run["round_end_ms"])[:len(run["round_end_ms"]) // 2]
+            rows.append([run["ranks"], run["size"], run["mode"], run.get("rows", "natural"),
+                         f"{run['composite_ms']:.1f}", f"{run['assembly_ms']:.1f}",
+                         f"{run['median_ms']:.1f}", " ".join(f"{t:.1f}" for t in radix_rounds)])
+    rows.sort(key=lambda r: (r[2], r[3], r[0]))
     writer.writerows(rows)
 
 
@@ -98,6 +114,7 @@ def plot(folder):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3 or sys.argv[1] not in ("calibration", "sweep", "plot"):
+    if len(sys.argv) != 3 or sys.argv[1] not in ("calibration", "sweep", "rounds", "plot"):
         sys.exit(__doc__)
-    {"calibration": calibration, "sweep": sweep, "plot": plot}[sys.argv[1]](sys.argv[2])
+    {"calibration": calibration, "sweep": sweep, "rounds": rounds,
+     "plot": plot}[sys.argv[1]](sys.argv[2])

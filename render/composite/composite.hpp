@@ -19,6 +19,15 @@ namespace tetray::render {
 
 enum class CompositeAlgorithm { automatic, binary_swap, radix_k, gather };
 
+// The order in which the schedule takes the image's rows (RowOrder, composite_region.hpp).
+// Natural order splits the image into bands of rows: where a rank's hits cover a short band of
+// the screen, all of a group's pixels can fall in one member's part. Interlaced order spreads
+// every band over all parts, at the price of a run per row (no piece sent from the image without
+// a copy, unless it is within one row). automatic: interlaced when every rank's active rows
+// span at most a quarter of the image's height (the domain decompositions of many ranks),
+// natural otherwise (kInterlaceBelow, composite_plan.hpp).
+enum class CompositeRows { automatic, natural, interlaced };
+
 struct CompositeOptions {
   CompositeAlgorithm algorithm = CompositeAlgorithm::automatic;
   int root = 0;  // the rank that receives the final image
@@ -26,6 +35,7 @@ struct CompositeOptions {
   // the mesh): only it is scanned for them, instead of the whole image, whose scan is the
   // largest cost of a rank that covers little of a large image. Per rank; unset: the image.
   std::optional<PixelRect> active_hint;
+  CompositeRows rows = CompositeRows::automatic;
 };
 
 struct CompositeStats {
@@ -33,6 +43,7 @@ struct CompositeStats {
   std::uint64_t bytes_sent = 0;      // by this rank
   std::uint64_t bytes_received = 0;  // by this rank
   int rounds = 0;
+  bool interlaced = false;  // the schedule took the rows interlaced (CompositeRows)
   // The most bytes of messages this rank held at once (its sends of a round and the message
   // being received), beside the image itself: the compositor's memory.
   std::uint64_t peak_message_bytes = 0;

@@ -16,16 +16,17 @@ namespace {
 // full-width active region crosses rows).
 class RunWriter {
  public:
-  // `most_words` bounds the headers, so that the runs' appends never move them.
-  RunWriter(PixelSpan span, std::size_t most_words) : cursor_(span.begin) {
+  // `most_words` bounds the headers, so that the runs' appends never move them. `join`: a run
+  // may continue into the next row (natural order, where that row follows in the image).
+  RunWriter(PixelSpan span, std::size_t most_words, bool join) : cursor_(span.begin), join_(join) {
     words_.reserve(most_words);
     words_.assign(kPieceHeaderWords, 0);
     words_[0] = span.begin;
   }
 
-  // Pixels [begin, end) of row j, which starts at index `row`.
+  // Pixels [begin, end) of the schedule row that starts at index `row`, image row j.
   void add_run(std::uint32_t begin, std::uint32_t end, std::uint32_t row, int j) {
-    if (open_.size() > 0 && begin == open_.end) {
+    if (open_.size() > 0 && begin == open_.end && (join_ || begin != row)) {
       open_.end = end;
     } else {
       close_run();
@@ -60,41 +61,79 @@ class RunWriter {
 
   PieceMessage words_;
   std::uint32_t cursor_;  // index just after the last run written
-  PixelSpan open_;        // the run not written yet (empty: none)
+  bool join_;
+  PixelSpan open_;  // the run not written yet (empty: none)
   std::uint32_t run_count_ = 0;
   std::uint32_t pixel_count_ = 0;
   PixelRect rect_{};
 };
 
+// The schedule rows of `span` that reach `hint`'s image rows, first to last; a row outside the
+// hint has no active pixel. Natural order: the range itself; interlaced: every row of the span,
+// each tested.
+struct ScannedRows {
+  int first = 0, last = -1;
+  std::size_t count = 0;  // of them within the hint
+};
+
+ScannedRows scanned_rows(PixelSpan span, PixelRect hint, std::uint32_t width,
+                         const RowOrder& order) {
+  ScannedRows rows{static_cast<int>(span.begin / width), static_cast<int>((span.end - 1) / width)};
+  if (order.natural()) {
+    rows.first = std::max(rows.first, hint.y0);
+    rows.last = std::min(rows.last, hint.y1 - 1);
+    rows.count = static_cast<std::size_t>(std::max(0, rows.last - rows.first + 1));
+    return rows;
+  }
+  for (int v = rows.first; v <= rows.last; ++v) {
+    const auto j = static_cast<int>(order.image_row(static_cast<std::uint32_t>(v)));
+    rows.count += j >= hint.y0 && j < hint.y1 ? 1 : 0;
+  }
+  return rows;
+}
+
 // The header and run headers of the active pixels of `span` (encode_piece without the pixels).
-PieceMessage scan_runs(const Framebuffer& image, PixelSpan span, PixelRect hint) {
+PieceMessage scan_runs(const Framebuffer& image, PixelSpan span, PixelRect hint,
+                       const RowOrder& order) {
   if (span.size() == 0 || hint.empty() || image.width == 0) {
-    return RunWriter(span, kPieceHeaderWords).finish();
+    return RunWriter(span, kPieceHeaderWords, true).finish();
   }
   const auto width = static_cast<std::uint32_t>(image.width);
-  const int first_row = std::max(hint.y0, static_cast<int>(span.begin / width));
-  const int last_row = std::min(hint.y1 - 1, static_cast<int>((span.end - 1) / width));
-  const auto rows = static_cast<std::size_t>(std::max(0, last_row - first_row + 1));
+  const ScannedRows rows = scanned_rows(span, hint, width, order);
   const std::size_t scanned_at_most =
-      std::min<std::size_t>(span.size(), rows * static_cast<std::size_t>(hint.x1 - hint.x0));
+      std::min<std::size_t>(span.size(), rows.count * static_cast<std::size_t>(hint.x1 - hint.x0));
   // A row's runs are separated by background pixels: at most (its pixels + 1) / 2 of them.
-  const std::size_t runs_at_most = (scanned_at_most + rows) / 2 + 1;
-  RunWriter writer(span, kPieceHeaderWords + kRunHeaderWords * runs_at_most);
-  for (int j = first_row; j <= last_row; ++j) {
-    const std::uint32_t row = static_cast<std::uint32_t>(j) * width;
-    std::uint32_t index = std::max(row + static_cast<std::uint32_t>(hint.x0), span.begin);
-    const std::uint32_t end = std::min(row + static_cast<std::uint32_t>(hint.x1), span.end);
+  const std::size_t runs_at_most = (scanned_at_most + rows.count) / 2 + 1;
+  RunWriter writer(span, kPieceHeaderWords + kRunHeaderWords * runs_at_most, order.natural());
+  for (int v = rows.first; v <= rows.last; ++v) {
+    const auto j = static_cast<int>(order.image_row(static_cast<std::uint32_t>(v)));
+    if (j < hint.y0 || j >= hint.y1) continue;
+    const std::uint32_t row = static_cast<std::uint32_t>(v) * width;
+    // Scanned where the pixels are: image index = schedule index + shift.
+    const std::uint32_t shift = static_cast<std::uint32_t>(j) * width - row;
+    std::uint32_t index = std::max(row + static_cast<std::uint32_t>(hint.x0), span.begin) + shift;
+    const std::uint32_t end = std::min(row + static_cast<std::uint32_t>(hint.x1), span.end) + shift;
     while (index < end) {
       const std::uint32_t run_begin = run_end(image, index, end, false);
       index = run_end(image, run_begin, end, true);
-      if (index > run_begin) writer.add_run(run_begin, index, row, j);
+      if (index > run_begin) writer.add_run(run_begin - shift, index - shift, row, j);
     }
   }
   return std::move(writer).finish();
 }
 
+// Copies `count` pixels of `image` from image index `at` as three arrays: colors, depths, keys.
+void copy_pixels_out(const Framebuffer& image, std::size_t at, std::size_t count,
+                     std::uint32_t* out) {
+  std::memcpy(out, image.rgba.data() + 4 * at, 4 * count * sizeof(float));
+  std::memcpy(out + 4 * count, image.depth.data() + at, count * sizeof(float));
+  std::memcpy(out + 5 * count, image.hit.data() + at, count * sizeof(std::uint32_t));
+}
+
 // The whole message of `runs` (scan_runs): each run's header, then its pixels as three arrays.
-PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs) {
+PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs,
+                         const RowOrder& order) {
+  const auto width = static_cast<std::uint32_t>(image.width);
   const std::size_t run_count = runs[1], pixels = runs[2];
   PieceMessage words;
   words.resize(kPieceHeaderWords + kRunHeaderWords * run_count + kPixelWords * pixels);
@@ -106,10 +145,8 @@ PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs) {
     position += skip;
     words[at] = skip;
     words[at + 1] = count;
-    std::uint32_t* out = words.data() + at + kRunHeaderWords;
-    std::memcpy(out, image.rgba.data() + 4 * position, 4 * count * sizeof(float));
-    std::memcpy(out + 4 * count, image.depth.data() + position, count * sizeof(float));
-    std::memcpy(out + 5 * count, image.hit.data() + position, count * sizeof(std::uint32_t));
+    copy_pixels_out(image, order.image_index(position, width), count,
+                    words.data() + at + kRunHeaderWords);
     at += kRunHeaderWords + kPixelWords * count;
     position += count;
   }
@@ -146,11 +183,13 @@ std::optional<PixelRect> header_rect(std::span<const std::uint32_t> message,
                    static_cast<int>(y1)};
 }
 
-// Calls `write` for each run of `message` (whose header is checked) and says whether every run
-// lies whole in the message and in the image's `pixel_count` pixels, and the runs fill the
-// message exactly. With a `write` that does nothing, it checks the message.
+// Calls `write` for each run of `message` (whose header is checked), at its image index, and
+// says whether every run lies whole in the message and in the image's `pixel_count` pixels (in
+// one row where the order is interlaced), and the runs fill the message exactly. With a `write`
+// that does nothing, it checks the message.
 template <typename Write>
-bool for_each_run(std::span<const std::uint32_t> message, std::size_t pixel_count, Write&& write) {
+bool for_each_run(std::span<const std::uint32_t> message, std::size_t pixel_count,
+                  std::uint32_t width, const RowOrder& order, Write&& write) {
   std::size_t position = message[0];
   std::size_t at = kPieceHeaderWords;
   for (std::uint32_t run = 0; run < message[1]; ++run) {
@@ -159,11 +198,13 @@ bool for_each_run(std::span<const std::uint32_t> message, std::size_t pixel_coun
     const std::size_t count = message[at + 1];
     at += kRunHeaderWords;
     if (!fits(message, at, kPixelWords * count) || position > pixel_count ||
-        count > pixel_count - position) {
+        count > pixel_count - position ||
+        (!order.natural() && count > 0 && position % width + count > width)) {
       return false;
     }
     const std::uint32_t* rgba = message.data() + at;
-    write(Run{position, count, rgba, rgba + 4 * count, rgba + 5 * count});
+    const std::size_t image_at = count > 0 ? order.image_index(position, width) : 0;
+    write(Run{image_at, count, rgba, rgba + 4 * count, rgba + 5 * count});
     position += count;
     at += kPixelWords * count;
   }
@@ -174,12 +215,13 @@ bool for_each_run(std::span<const std::uint32_t> message, std::size_t pixel_coun
 // nothing.
 template <typename Write>
 std::optional<PixelRect> decode(Framebuffer& image, std::span<const std::uint32_t> message,
-                                Write&& write) {
+                                const RowOrder& order, Write&& write) {
   const std::optional<PixelRect> rect = header_rect(message, image);
-  if (!rect || !for_each_run(message, image.pixel_count(), [](const Run&) {})) {
+  const auto width = static_cast<std::uint32_t>(image.width);
+  if (!rect || !for_each_run(message, image.pixel_count(), width, order, [](const Run&) {})) {
     return std::nullopt;
   }
-  for_each_run(message, image.pixel_count(), write);
+  for_each_run(message, image.pixel_count(), width, order, write);
   return rect;
 }
 
@@ -230,50 +272,98 @@ void copy_run(Framebuffer& image, const Run& run) {
   std::memcpy(image.hit.data() + run.position, run.hit, run.count * sizeof(std::uint32_t));
 }
 
-// One committed datatype of 32-bit words at their distances from `base`: the `header_words`
-// words at `header` (none when null), then the span's colors, depths and keys where the image
-// holds them. What a piece sent or received in place travels as.
-int span_type(const std::uint32_t* header, std::size_t header_words, const Framebuffer& image,
-              PixelSpan span, const void* base, MPI_Datatype& type) {
-  const std::size_t n = span.size();
-  const void* blocks[] = {header, image.rgba.data() + 4 * std::size_t{span.begin},
-                          image.depth.data() + span.begin, image.hit.data() + span.begin};
-  const int lengths[] = {static_cast<int>(header_words), static_cast<int>(4 * n),
-                         static_cast<int>(n), static_cast<int>(n)};
-  const std::size_t first = header != nullptr ? 0 : 1;
+// One committed datatype of 32-bit words at their distances from `base`: the `first_words`
+// words at `first` (none when null), then each segment's colors, depths and keys where the image
+// holds them, every segment after the first preceded by its two run-header words, those of
+// segment k at run_headers + 2 (k - 1). What a piece sent or received in place travels as.
+int segments_type(const std::uint32_t* first, std::size_t first_words,
+                  const std::uint32_t* run_headers, const Framebuffer& image,
+                  std::span<const Segment> segments, const void* base, MPI_Datatype& type) {
+  std::vector<const void*> blocks;
+  std::vector<int> lengths;
+  blocks.reserve(1 + 4 * segments.size());
+  lengths.reserve(blocks.capacity());
+  const auto add = [&](const void* block, std::size_t words) {
+    blocks.push_back(block);
+    lengths.push_back(static_cast<int>(words));
+  };
+  if (first != nullptr) add(first, first_words);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const auto [at, n] = segments[k];
+    if (k > 0) add(run_headers + kRunHeaderWords * (k - 1), kRunHeaderWords);
+    add(image.rgba.data() + 4 * at, 4 * n);
+    add(image.depth.data() + at, n);
+    add(image.hit.data() + at, n);
+  }
   MPI_Aint origin = 0;
   MPI_Get_address(base, &origin);
-  MPI_Aint displacements[4];
-  for (std::size_t k = first; k < 4; ++k) {
-    MPI_Aint at = 0;
-    MPI_Get_address(blocks[k], &at);
-    displacements[k] = at - origin;
+  std::vector<MPI_Aint> displacements(blocks.size());
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    MPI_Get_address(blocks[k], &displacements[k]);
+    displacements[k] -= origin;
   }
-  if (int rc = MPI_Type_create_hindexed(static_cast<int>(4 - first), lengths + first,
-                                        displacements + first, MPI_UINT32_T, &type);
+  if (int rc = MPI_Type_create_hindexed(static_cast<int>(blocks.size()), lengths.data(),
+                                        displacements.data(), MPI_UINT32_T, &type);
       rc != MPI_SUCCESS)
     return rc;
   return MPI_Type_commit(&type);
 }
 
-}  // namespace
-
-PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint) {
-  return with_pixels(image, scan_runs(image, span, hint));
+// Whether a piece's header (its first kFirstPartWords words) says it holds every pixel of
+// `span`, in the runs span_segments gives: in place, its runs are the image's own segments.
+bool covers_whole_span(const std::uint32_t* header, PixelSpan span,
+                       std::span<const Segment> segments) {
+  if (segments.empty() || header[0] != span.begin || header[1] != segments.size()) return false;
+  // Every pixel, the first run from the span's start: the runs are then the segments.
+  const bool every_pixel = header[2] == span.size();
+  return every_pixel && header[kPieceHeaderWords] == 0 &&
+         header[kPieceHeaderWords + 1] == segments[0].count;
 }
 
-OutgoingPiece outgoing_piece(const Framebuffer& image, PixelSpan span, PixelRect hint) {
-  PieceMessage runs = scan_runs(image, span, hint);
-  if (runs[1] != 1) return {with_pixels(image, runs), nullptr, {}};
-  const std::uint32_t begin = span.begin + runs[kPieceHeaderWords];
-  const PixelSpan run{begin, begin + runs[kPieceHeaderWords + 1]};
-  return {std::move(runs), &image, run};
+}  // namespace
+
+PieceMessage encode_piece(const Framebuffer& image, PixelSpan span, PixelRect hint,
+                          const RowOrder& order) {
+  return with_pixels(image, scan_runs(image, span, hint, order), order);
+}
+
+std::vector<Segment> span_segments(PixelSpan span, std::uint32_t width, const RowOrder& order) {
+  std::vector<Segment> segments;
+  if (span.size() == 0) return segments;
+  if (order.consecutive(span, width)) {
+    segments.push_back({order.image_index(span.begin, width), span.size()});
+    return segments;
+  }
+  for (std::uint32_t at = span.begin; at < span.end;) {
+    const std::uint32_t row_end = std::min(span.end, (at / width + 1) * width);
+    segments.push_back({order.image_index(at, width), std::size_t{row_end - at}});
+    at = row_end;
+  }
+  return segments;
+}
+
+OutgoingPiece outgoing_piece(const Framebuffer& image, PixelSpan span, PixelRect hint,
+                             const RowOrder& order) {
+  PieceMessage runs = scan_runs(image, span, hint, order);
+  const auto width = static_cast<std::uint32_t>(image.width);
+  // In place: one run (consecutive in the image: a run stays in its row unless the order is
+  // natural), or every pixel of the span (interlaced, a run per row: the span's segments).
+  if (runs[1] == 1) {
+    const std::size_t at = order.image_index(span.begin + runs[kPieceHeaderWords], width);
+    std::vector<Segment> run{{at, runs[kPieceHeaderWords + 1]}};
+    return {std::move(runs), &image, std::move(run)};
+  }
+  if (runs[1] > 1 && runs[2] == span.size()) {
+    std::vector<Segment> segments = span_segments(span, width, order);
+    return {std::move(runs), &image, std::move(segments)};
+  }
+  return {with_pixels(image, runs, order), nullptr, {}};
 }
 
 OutgoingPiece::OutgoingPiece(OutgoingPiece&& other) noexcept
     : words_(std::move(other.words_)),
       image_(other.image_),
-      run_(other.run_),
+      segments_(std::move(other.segments_)),
       type_(std::exchange(other.type_, MPI_DATATYPE_NULL)) {}
 
 OutgoingPiece& OutgoingPiece::operator=(OutgoingPiece&& other) noexcept {
@@ -281,7 +371,7 @@ OutgoingPiece& OutgoingPiece::operator=(OutgoingPiece&& other) noexcept {
     if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
     words_ = std::move(other.words_);
     image_ = other.image_;
-    run_ = other.run_;
+    segments_ = std::move(other.segments_);
     type_ = std::exchange(other.type_, MPI_DATATYPE_NULL);
   }
   return *this;
@@ -291,17 +381,36 @@ OutgoingPiece::~OutgoingPiece() {
   if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
 }
 
+std::size_t OutgoingPiece::pixel_count() const {
+  std::size_t pixels = 0;
+  for (const Segment& segment : segments_) pixels += segment.count;
+  return pixels;
+}
+
 std::size_t OutgoingPiece::wire_words() const {
-  return words_.size() + (in_place() ? kPixelWords * std::size_t{run_.size()} : 0);
+  return words_.size() + (in_place() ? kPixelWords * pixel_count() : 0);
 }
 
 PieceMessage OutgoingPiece::wire() const {
-  return in_place() ? with_pixels(*image_, words_) : words_;
+  if (!in_place()) return words_;
+  PieceMessage words;
+  words.resize(wire_words());
+  std::copy(words_.begin(), words_.begin() + kPieceHeaderWords, words.begin());
+  std::size_t at = kPieceHeaderWords;
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    const auto header = words_.begin() + kPieceHeaderWords + kRunHeaderWords * k;
+    std::copy(header, header + kRunHeaderWords, words.begin() + at);
+    at += kRunHeaderWords;
+    copy_pixels_out(*image_, segments_[k].at, segments_[k].count, words.data() + at);
+    at += kPixelWords * segments_[k].count;
+  }
+  return words;
 }
 
-int OutgoingPiece::make_run_type(const std::uint32_t* header, const void* base) {
+int OutgoingPiece::make_run_type(const std::uint32_t* first, const void* base) {
   if (type_ != MPI_DATATYPE_NULL) MPI_Type_free(&type_);
-  return span_type(header, words_.size(), *image_, run_, base, type_);
+  return segments_type(first, kFirstPartWords, words_.data() + kFirstPartWords, *image_, segments_,
+                       base, type_);
 }
 
 int OutgoingPiece::isend(int peer, int tag, MPI_Comm comm, MPI_Request* request) {
@@ -320,7 +429,7 @@ int OutgoingPiece::isend_parts(int peer, int tag, MPI_Comm comm, MPI_Request req
       rc != MPI_SUCCESS)
     return rc;
   if (in_place()) {
-    const void* base = image_->rgba.data() + 4 * std::size_t{run_.begin};
+    const void* base = image_->rgba.data() + 4 * segments_.front().at;
     if (int rc = make_run_type(nullptr, base); rc != MPI_SUCCESS) return rc;
     return MPI_Isend(base, 1, type_, peer, tag, comm, &requests[1]);
   }
@@ -331,7 +440,8 @@ int OutgoingPiece::isend_parts(int peer, int tag, MPI_Comm comm, MPI_Request req
 
 int post_piece_body(Framebuffer& image, PixelSpan span, ReceiveBuffer& buffer,
                     std::size_t header_words, int peer, int tag, MPI_Comm comm,
-                    MPI_Request* request, PartsArrival& arrival) {
+                    MPI_Request* request, PartsArrival& arrival, const RowOrder& order) {
+  const auto width = static_cast<std::uint32_t>(image.width);
   const std::uint32_t* header = buffer.words.get();
   if (header_words < kPieceHeaderWords) return MPI_ERR_OTHER;
   const std::size_t total = kPieceHeaderWords + kRunHeaderWords * std::size_t{header[1]} +
@@ -341,39 +451,52 @@ int post_piece_body(Framebuffer& image, PixelSpan span, ReceiveBuffer& buffer,
     return MPI_ERR_OTHER;
   arrival.header_words = header_words;
   arrival.body_words = total - header_words;
-  arrival.in_place = header[1] == 1 && header_words == kFirstPartWords && header[0] == span.begin &&
-                     header[kPieceHeaderWords] == 0 &&
-                     header[kPieceHeaderWords + 1] == span.size() &&
-                     span.end <= image.pixel_count();
-  if (arrival.body_words == 0) return MPI_SUCCESS;
-  if (!arrival.in_place) {
-    return MPI_Irecv(buffer.words.get() + header_words, static_cast<int>(arrival.body_words),
-                     MPI_UINT32_T, peer, tag, comm, request);
+  std::vector<Segment> segments;
+  if (header_words == kFirstPartWords && span.end <= image.pixel_count()) {
+    segments = span_segments(span, width, order);
   }
-  float* const colors = image.rgba.data() + 4 * std::size_t{span.begin};
-  if (int rc = span_type(nullptr, 0, image, span, colors, arrival.type); rc != MPI_SUCCESS)
+  arrival.in_place = header_words == kFirstPartWords && covers_whole_span(header, span, segments);
+  if (arrival.body_words == 0) return MPI_SUCCESS;
+  std::uint32_t* const after_header = buffer.words.get() + header_words;
+  if (!arrival.in_place) {
+    return MPI_Irecv(after_header, static_cast<int>(arrival.body_words), MPI_UINT32_T, peer, tag,
+                     comm, request);
+  }
+  // The pixels into the image, the run headers after the first into the buffer (checked when
+  // the piece is taken).
+  arrival.segments = std::move(segments);
+  float* const colors = image.rgba.data() + 4 * arrival.segments.front().at;
+  if (int rc =
+          segments_type(nullptr, 0, after_header, image, arrival.segments, colors, arrival.type);
+      rc != MPI_SUCCESS)
     return rc;
   return MPI_Irecv(colors, 1, arrival.type, peer, tag, comm, request);
 }
 
 std::optional<PixelRect> take_piece_body(Framebuffer& image, PixelSpan, const ReceiveBuffer& buffer,
-                                         PartsArrival& arrival, std::size_t body_words) {
+                                         PartsArrival& arrival, std::size_t body_words,
+                                         const RowOrder& order) {
   if (body_words != arrival.body_words) return std::nullopt;
   const std::span<const std::uint32_t> message(buffer.words.get(),
                                                arrival.header_words + arrival.body_words);
-  if (!arrival.in_place) return copy_piece(image, message);
-  // The pixels are in place (the body is not in `message`): the header's rectangle must lie in
-  // the image.
+  if (!arrival.in_place) return copy_piece(image, message, order);
+  // The pixels are in place; the buffer holds the runs' headers after the first, each of which
+  // must continue the span without a gap. The header's rectangle must lie in the image.
+  const std::uint32_t* run_headers = buffer.words.get() + arrival.header_words;
+  for (std::size_t k = 1; k < arrival.segments.size(); ++k, run_headers += kRunHeaderWords) {
+    if (run_headers[0] != 0 || run_headers[1] != arrival.segments[k].count) return std::nullopt;
+  }
   return header_rect(message, image);
 }
 
-std::optional<PixelRect> composite_piece(Framebuffer& image,
-                                         std::span<const std::uint32_t> message) {
-  return decode(image, message, [&](const Run& run) { composite_run(image, run); });
+std::optional<PixelRect> composite_piece(Framebuffer& image, std::span<const std::uint32_t> message,
+                                         const RowOrder& order) {
+  return decode(image, message, order, [&](const Run& run) { composite_run(image, run); });
 }
 
-std::optional<PixelRect> copy_piece(Framebuffer& image, std::span<const std::uint32_t> message) {
-  return decode(image, message, [&](const Run& run) { copy_run(image, run); });
+std::optional<PixelRect> copy_piece(Framebuffer& image, std::span<const std::uint32_t> message,
+                                    const RowOrder& order) {
+  return decode(image, message, order, [&](const Run& run) { copy_run(image, run); });
 }
 
 }  // namespace tetray::render

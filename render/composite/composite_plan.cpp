@@ -74,6 +74,18 @@ CompositePlan make_plan(int rank_count, CompositeAlgorithm algorithm) {
   return radix_k_plan(rank_count);
 }
 
+bool interlace_rows(CompositeRows rows, int tallest_active_rows, int height) {
+  switch (rows) {
+    case CompositeRows::natural:
+      return false;
+    case CompositeRows::interlaced:
+      return true;
+    case CompositeRows::automatic:
+      break;
+  }
+  return tallest_active_rows <= kInterlaceBelow * height;
+}
+
 RoundPosition round_position(const CompositePlan& plan, int round, int virtual_rank) {
   int stride = 1;
   for (int r = 0; r < round; ++r) stride *= plan.radices[static_cast<std::size_t>(r)];

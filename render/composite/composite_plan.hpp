@@ -44,4 +44,12 @@ struct RoundPosition {
 };
 RoundPosition round_position(const CompositePlan& plan, int round, int virtual_rank);
 
+// CompositeRows::automatic interlaces when the tallest rank's active rows are at most this
+// share of the image's height (docs/scaling.md: where each order wins).
+inline constexpr double kInterlaceBelow = 0.25;
+
+// Whether the schedule takes the rows interlaced, from the choice and the agreed tallest active
+// rows (the same on every rank).
+bool interlace_rows(CompositeRows rows, int tallest_active_rows, int height);
+
 }  // namespace tetray::render

@@ -1,6 +1,7 @@
 #include "render/composite/composite_region.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace tetray::render {
 namespace {
@@ -52,6 +53,19 @@ PixelSpan split_span(PixelSpan span, int parts, int part) {
                                                    static_cast<std::uint64_t>(parts));
   };
   return {boundary(part), boundary(part + 1)};
+}
+
+std::vector<std::uint32_t> interlaced_rows(int height) {
+  std::vector<std::uint32_t> rows;
+  if (height <= 0) return rows;
+  rows.reserve(static_cast<std::size_t>(height));
+  const auto bits = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(height - 1)));
+  for (std::uint32_t k = 0; k < (std::uint32_t{1} << bits); ++k) {
+    std::uint32_t reversed = 0;
+    for (int b = 0; b < bits; ++b) reversed |= ((k >> b) & 1u) << (bits - 1 - b);
+    if (reversed < static_cast<std::uint32_t>(height)) rows.push_back(reversed);
+  }
+  return rows;
 }
 
 PixelRect united(PixelRect a, PixelRect b) {

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "render/core/framebuffer.hpp"
 
@@ -40,6 +42,36 @@ struct PixelSpan {
 
 // Part `part` of `parts` near-equal consecutive parts of `span`.
 PixelSpan split_span(PixelSpan span, int parts, int part);
+
+// Where the schedule's rows lie in the image. The compositor's spans are of row-major indices
+// p = v w + i over schedule rows v: in natural order schedule row v is image row v; interlaced,
+// it is image row rows[v], the rows taken in the order of their bit-reversed numbers, so that
+// any run of consecutive schedule rows samples the whole image evenly. A rank whose hits cover
+// a small part of the screen then has about as many pixels in every part a group splits its
+// span into, instead of all of them in one part (IceT's interlaced images, Moreland et al.,
+// LDAV 2011). A run of a piece stays in one schedule row there, so that its pixels are
+// consecutive in the image.
+struct RowOrder {
+  std::span<const std::uint32_t> rows;  // image row of each schedule row; empty: natural order
+
+  bool natural() const { return rows.empty(); }
+  std::uint32_t image_row(std::uint32_t schedule_row) const {
+    return natural() ? schedule_row : rows[schedule_row];
+  }
+  // The image index of schedule index `position` in an image `width` pixels wide.
+  std::size_t image_index(std::size_t position, std::uint32_t width) const {
+    if (natural()) return position;
+    return std::size_t{rows[position / width]} * width + position % width;
+  }
+  // Whether the span's pixels are consecutive in the image: in natural order, or within one row.
+  bool consecutive(PixelSpan span, std::uint32_t width) const {
+    return natural() || span.size() == 0 || span.begin / width == (span.end - 1) / width;
+  }
+};
+
+// The interlaced order of `height` rows (RowOrder::rows): 0, h/2, h/4, 3h/4, ... for a power
+// of two, the rows whose bit-reversed numbers are in range otherwise.
+std::vector<std::uint32_t> interlaced_rows(int height);
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1); empty when it holds no pixel.
 struct PixelRect {

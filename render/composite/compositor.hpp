@@ -5,22 +5,26 @@
 //
 //   PixelRect active_rect(const Image&, PixelRect within);   of the active pixels within
 //   PixelRect image_rect(const Image&);                      the whole image
-//   Message outgoing_piece(const Image&, PixelSpan, PixelRect);  the span's active pixels
+//   Message outgoing_piece(const Image&, PixelSpan, PixelRect, const RowOrder&);  the span's
+//       active pixels
 //   int isend_piece(Message&, int peer, int tag, MPI_Comm, MPI_Request*);  its MPI_Isend
 //   int isend_piece_parts(Message&, int peer, int tag, MPI_Comm, MPI_Request[2]);  the same as
 //       a header message and a body message (the assembly's pieces)
 //   int post_piece_body(Image&, PixelSpan, ReceiveBuffer&, std::size_t header_words, int peer,
-//       int tag, MPI_Comm, MPI_Request*, PartsArrival&);  the body's receive, in place when the
-//       header says the piece is its whole span
+//       int tag, MPI_Comm, MPI_Request*, PartsArrival&, const RowOrder&);  the body's receive,
+//       in place when the header says the piece is its whole span
 //   std::optional<PixelRect> take_piece_body(Image&, PixelSpan, ReceiveBuffer&, PartsArrival&,
-//       std::size_t body_words);  the assembled piece, copied unless it arrived in place
-//   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>);
+//       std::size_t body_words, const RowOrder&);  the assembled piece, copied unless it
+//       arrived in place
+//   std::optional<PixelRect> composite_piece(Image&, std::span<const std::uint32_t>,
+//       const RowOrder&);
 //   std::size_t Image::pixel_count() const;
 //   std::uint64_t message_bytes(const Message&);   the bytes the message stands for
 //   std::size_t piece_capacity(const Image&, PixelSpan);   most words a piece of the span takes
 //   std::uint64_t piece_bytes(const Image&, std::span<const std::uint32_t>);   of a received one
 //
-// where a Message arrives as 32-bit words.
+// where a Message arrives as 32-bit words, and spans are of the schedule's indices in the
+// RowOrder (composite_region.hpp) the ranks agreed on.
 //
 // Rounds (composite_plan.hpp): the fold, the radix-k rounds, then the assembly of the final
 // image on the root by the same groups in reverse order. In the last radix round each group
@@ -60,12 +64,16 @@ inline constexpr std::size_t kPostedReceives = 8;
 template <typename Image>
 class Compositor {
  public:
-  using Message = decltype(outgoing_piece(std::declval<const Image&>(), PixelSpan{}, PixelRect{}));
+  using Message =
+      decltype(outgoing_piece(std::declval<const Image&>(), PixelSpan{}, PixelRect{}, RowOrder{}));
 
-  // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`.
+  // `rank` is this rank in `comm`; the plan's virtual rank 0 is `root`. `start`: when the
+  // composite began (the scan for `active` and the agreement count in round 1); `rows`: the
+  // image row of each schedule row, empty in natural order.
   Compositor(Image& image, MPI_Comm comm, int rank, const CompositeOptions& options,
-             CompositePlan plan, CompositeStats& stats, std::vector<ReceiveBuffer>& buffers)
-      : start_(MPI_Wtime()),
+             CompositePlan plan, CompositeStats& stats, std::vector<ReceiveBuffer>& buffers,
+             double start, PixelRect active, std::vector<std::uint32_t> rows)
+      : start_(start),
         image_(image),
         comm_(comm),
         root_(options.root),
@@ -74,7 +82,11 @@ class Compositor {
         stats_(stats),
         buffers_(buffers),
         span_{0, static_cast<std::uint32_t>(image.pixel_count())},
-        rect_(active_rect(image, options.active_hint.value_or(image_rect(image)))) {}
+        rect_(active),
+        rows_(std::move(rows)) {}
+
+  Compositor(const Compositor&) = delete;
+  Compositor& operator=(const Compositor&) = delete;
 
   int run() {
     int tag = kFirstCompositeTag;
@@ -188,7 +200,9 @@ class Compositor {
     return sends;
   }
 
-  Message encode(PixelSpan span) const { return outgoing_piece(image_, span, rect_); }
+  RowOrder order() const { return {rows_}; }
+
+  Message encode(PixelSpan span) const { return outgoing_piece(image_, span, rect_, order()); }
 
   // What a received piece does to the image: composited by wins_over, or copied over it (the
   // assembly's pieces, already final).
@@ -249,7 +263,7 @@ class Compositor {
       const std::uint64_t bytes = piece_bytes(image_, piece);
       held += bytes;
       stats_.bytes_received += bytes;
-      const auto piece_rect = composite_piece(image_, piece);
+      const auto piece_rect = composite_piece(image_, piece, order());
       if (!piece_rect) {
         cancel(requests);
         return MPI_ERR_OTHER;
@@ -286,7 +300,7 @@ class Compositor {
       const bool header = index < n;
       if (header) {
         if (int error = post_piece_body(image_, incoming.span, buffers_[k], count, incoming.peer,
-                                        tag, comm_, &requests[n + k], arrivals[k]);
+                                        tag, comm_, &requests[n + k], arrivals[k], order());
             error != MPI_SUCCESS) {
           cancel(requests);
           return error;
@@ -299,7 +313,7 @@ class Compositor {
       held += bytes;
       stats_.bytes_received += bytes;
       const auto piece_rect =
-          take_piece_body(image_, incoming.span, buffers_[k], arrivals[k], body);
+          take_piece_body(image_, incoming.span, buffers_[k], arrivals[k], body, order());
       if (!piece_rect) {
         cancel(requests);
         return MPI_ERR_OTHER;
@@ -338,7 +352,7 @@ class Compositor {
     MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   }
 
-  double start_;  // first, so that the scan of the constructor counts in round 1
+  double start_;
   Image& image_;
   MPI_Comm comm_;
   int root_;
@@ -348,6 +362,7 @@ class Compositor {
   std::vector<ReceiveBuffer>& buffers_;  // the caller's, kept between calls
   PixelSpan span_;
   PixelRect rect_;
+  std::vector<std::uint32_t> rows_;            // RowOrder::rows
   std::vector<PixelSpan> spans_before_round_;  // the span each radix round split
 };
 
@@ -362,13 +377,20 @@ int composite_image(Image& image, bool image_ok, MPI_Comm comm, const CompositeO
   if (rank_count == 1) return options.root == 0 ? MPI_SUCCESS : MPI_ERR_ROOT;
   const double start = MPI_Wtime();
   MPI_Comm_rank(comm, &rank);
-  int error = agree_on_inputs(image.width, image.height, image_ok, comm, options, rank_count);
+  const PixelRect active =
+      image_ok ? active_rect(image, options.active_hint.value_or(image_rect(image))) : PixelRect{};
+  int tallest_active_rows = 0;
+  int error = agree_on_inputs(image.width, image.height, image_ok, comm, options, rank_count,
+                              active.empty() ? 0 : active.y1 - active.y0, tallest_active_rows);
   if (error == MPI_SUCCESS && image.pixel_count() > 0) {
     CompositePlan plan = make_plan(rank_count, options.algorithm);
     stats.rounds = plan.round_count();
-    error = Compositor<Image>(image, comm, rank, options, std::move(plan), stats,
-                              workspace.receive_buffers)
-                .run();
+    stats.interlaced = interlace_rows(options.rows, tallest_active_rows, image.height);
+    error =
+        Compositor<Image>(
+            image, comm, rank, options, std::move(plan), stats, workspace.receive_buffers, start,
+            active, stats.interlaced ? interlaced_rows(image.height) : std::vector<std::uint32_t>{})
+            .run();
   }
   stats.seconds = MPI_Wtime() - start;
   return error;

@@ -8,7 +8,15 @@
 namespace tetray::composite_bench {
 
 const char* coverage_name(Coverage coverage) {
-  return coverage == Coverage::dense ? "dense" : "sparse";
+  switch (coverage) {
+    case Coverage::dense:
+      return "dense";
+    case Coverage::sparse:
+      return "sparse";
+    case Coverage::sparse_x:
+      break;
+  }
+  return "sparse_x";
 }
 
 namespace {
@@ -33,20 +41,35 @@ std::array<int, 3> cube_factors(int ranks) {
   return factors;
 }
 
+namespace {
+
+// Where a sparse rank's block lies on the screen: its cell of a columns x rows grid, and its
+// depth layer.
+struct Placement {
+  int i, j, columns, rows, layer;
+};
+
+Placement sparse_placement(Coverage coverage, int rank, int ranks) {
+  const auto [a, b, c] = cube_factors(ranks);
+  if (coverage == Coverage::sparse_x) return {(rank / a) % b, rank / (a * b), b, c, rank % a};
+  return {rank % a, (rank / a) % b, a, b, rank / (a * b)};
+}
+
+}  // namespace
+
 render::PixelRect footprint(Coverage coverage, int size, int rank, int ranks) {
   if (coverage == Coverage::dense) return {0, 0, size, size};
-  const auto [a, b, c] = cube_factors(ranks);
-  (void)c;
-  const int i = rank % a, j = (rank / a) % b;
-  return {size * i / a, size * j / b, size * (i + 1) / a, size * (j + 1) / b};
+  const Placement p = sparse_placement(coverage, rank, ranks);
+  return {size * p.i / p.columns, size * p.j / p.rows, size * (p.i + 1) / p.columns,
+          size * (p.j + 1) / p.rows};
 }
 
 render::Framebuffer bench_image(Coverage coverage, int size, int rank, int ranks) {
   render::Framebuffer image(size, size);
   const render::PixelRect rect = footprint(coverage, size, rank, ranks);
-  const auto [a, b, c] = cube_factors(ranks);
-  (void)c;
-  const float layer = coverage == Coverage::dense ? 0.0f : static_cast<float>(rank / (a * b));
+  const float layer = coverage == Coverage::dense
+                          ? 0.0f
+                          : static_cast<float>(sparse_placement(coverage, rank, ranks).layer);
   std::mt19937 rng(static_cast<std::uint32_t>(rank) + 1u);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int j = rect.y0; j < rect.y1; ++j) {

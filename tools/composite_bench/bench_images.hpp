@@ -2,10 +2,13 @@
 // the real framebuffers with those hits.
 //
 // dense:  every rank covers the whole screen (the worst case of the compositor).
-// sparse: the mesh is a cube split into P = a b c blocks (a, b, c as near each other as P
-//         allows, x fastest in rank order, as a domain decomposition numbers them) seen along
-//         its depth axis: rank r covers screen cell (r mod a, (r / a) mod b) of an a x b grid,
-//         about P^(-2/3) of the screen, at depth layer r / (a b).
+// sparse: the mesh is a cube split into P = a b c blocks (a <= b <= c as near each other as P
+//         allows, x fastest in rank order, as a domain decomposition numbers them) seen along its
+//         z axis: rank r covers screen cell (r mod a, (r / a) mod b) of an a x b grid, about
+//         P^(-2/3) of the screen, at depth layer r / (a b). The ranks of one cell are a b apart
+//         in rank order.
+// sparse_x: the same cube seen along its x axis: rank r covers cell ((r / a) mod b, r / (a b))
+//         of a b x c grid at depth layer r mod a. The ranks of one cell are consecutive.
 #pragma once
 
 #include <array>
@@ -17,7 +20,7 @@
 
 namespace tetray::composite_bench {
 
-enum class Coverage { dense, sparse };
+enum class Coverage { dense, sparse, sparse_x };
 
 const char* coverage_name(Coverage coverage);
 

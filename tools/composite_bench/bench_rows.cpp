@@ -18,20 +18,20 @@ void print_costs(const MachineCosts& c) {
 }
 
 void print_rows(const std::vector<Row>& rows) {
-  std::printf("\n%6s %6s %-7s %-12s %-5s %6s %10s %10s %10s %11s %12s %9s %9s\n", "P", "size",
-              "mode", "algorithm", "image", "rounds", "median ms", "rounds ms", "assembly",
+  std::printf("\n%6s %6s %-7s %-12s %-10s %-5s %6s %10s %10s %10s %11s %12s %9s %9s\n", "P", "size",
+              "mode", "algorithm", "rows", "image", "rounds", "median ms", "rounds ms", "assembly",
               "sent max MB", "moved mean MB", "mean/bnd", "msg B/px");
   for (const Row& r : rows) {
-    std::printf("%6d %6d %-7s %-12s %-5s %6d %10.3f %10.3f %10.3f %11.2f %12.2f %9.3f %9.2f\n",
-                r.ranks, r.size, r.coverage.c_str(), r.algorithm.c_str(),
-                r.model ? "model" : "real", r.rounds, r.median_ms, r.composite_ms, r.assembly_ms,
-                r.sent_max / 1e6, r.moved_mean / 1e6, r.moved_mean / r.bound,
-                r.message_bytes_per_pixel);
+    std::printf(
+        "%6d %6d %-7s %-12s %-10s %-5s %6d %10.3f %10.3f %10.3f %11.2f %12.2f %9.3f %9.2f\n",
+        r.ranks, r.size, r.coverage.c_str(), r.algorithm.c_str(), r.rows.c_str(),
+        r.model ? "model" : "real", r.rounds, r.median_ms, r.composite_ms, r.assembly_ms,
+        r.sent_max / 1e6, r.moved_mean / 1e6, r.moved_mean / r.bound, r.message_bytes_per_pixel);
   }
   for (const Row& r : rows) {
     if (r.model) continue;
-    std::printf("image hash P=%d size=%d %s %s: %016" PRIx64 "\n", r.ranks, r.size,
-                r.coverage.c_str(), r.algorithm.c_str(), r.root_image_hash);
+    std::printf("image hash P=%d size=%d %s %s %s: %016" PRIx64 "\n", r.ranks, r.size,
+                r.coverage.c_str(), r.algorithm.c_str(), r.rows.c_str(), r.root_image_hash);
   }
 }
 
@@ -58,6 +58,7 @@ bool write_json(const std::string& path, const std::vector<Row>& rows, const Mac
     run["size"] = r.size;
     run["mode"] = r.coverage;
     run["algorithm"] = r.algorithm;
+    run["rows"] = r.rows;
     run["image"] = r.model ? "model" : "real";
     run["rounds"] = r.rounds;
     run["median_ms"] = number(r.median_ms);

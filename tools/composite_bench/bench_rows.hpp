@@ -15,6 +15,7 @@ struct Row {
   int ranks = 0;
   int size = 0;
   std::string coverage, algorithm;
+  std::string rows;    // the row order the compositor took: natural or interlaced
   bool model = false;  // a model image (model_image.hpp), not a real framebuffer
   int rounds = 0;
   double median_ms = 0, min_ms = 0;  // the slowest rank's time per run

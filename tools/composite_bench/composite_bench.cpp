@@ -40,6 +40,7 @@ namespace tetray::composite_bench {
 namespace {
 
 using render::CompositeAlgorithm;
+using render::CompositeRows;
 using render::CompositeStats;
 
 constexpr double kPixelBytes = render::kPixelWords * sizeof(std::uint32_t);
@@ -50,6 +51,7 @@ struct BenchOptions {
   std::vector<Coverage> coverages{Coverage::dense, Coverage::sparse};
   std::vector<CompositeAlgorithm> algorithms{
       CompositeAlgorithm::binary_swap, CompositeAlgorithm::radix_k, CompositeAlgorithm::gather};
+  std::vector<CompositeRows> row_orders{CompositeRows::automatic};
   int repeat = 5;
   bool model = false;
   bool hint = true;
@@ -66,6 +68,10 @@ const std::map<std::string, CompositeAlgorithm> kAlgorithms{
     {"binary_swap", CompositeAlgorithm::binary_swap},
     {"radix_k", CompositeAlgorithm::radix_k},
     {"gather", CompositeAlgorithm::gather}};
+
+const std::map<std::string, CompositeRows> kRowOrders{{"automatic", CompositeRows::automatic},
+                                                      {"natural", CompositeRows::natural},
+                                                      {"interlaced", CompositeRows::interlaced}};
 
 const char* algorithm_name(CompositeAlgorithm algorithm) {
   for (const auto& [name, value] : kAlgorithms) {
@@ -87,9 +93,10 @@ struct RealImage {
   std::optional<render::PixelRect> hint;
   render::Framebuffer last;  // the result of the last run (the root's image)
   render::CompositeWorkspace workspace;
-  int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
+  int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeRows rows,
+                CompositeStats& stats) {
     last = image;
-    return render::composite(last, comm, {algorithm, 0, hint}, &stats, &workspace);
+    return render::composite(last, comm, {algorithm, 0, hint, rows}, &stats, &workspace);
   }
 };
 
@@ -97,9 +104,10 @@ struct ModelRun {
   ModelImage image;
   std::optional<render::PixelRect> hint;
   render::CompositeWorkspace workspace;
-  int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeStats& stats) {
+  int composite(MPI_Comm comm, CompositeAlgorithm algorithm, CompositeRows rows,
+                CompositeStats& stats) {
     ModelImage copy = image;
-    return render::composite_image(copy, true, comm, {algorithm, 0, hint}, stats, workspace);
+    return render::composite_image(copy, true, comm, {algorithm, 0, hint, rows}, stats, workspace);
   }
 };
 
@@ -117,7 +125,8 @@ std::vector<double> slowest_round_ends(const CompositeStats& stats, MPI_Comm com
 
 // Times `repeat` composites over `comm` (collective on comm).
 template <typename Run>
-Row measure(Run& run, int size, MPI_Comm comm, CompositeAlgorithm algorithm, int repeat) {
+Row measure(Run& run, int size, MPI_Comm comm, CompositeAlgorithm algorithm, CompositeRows rows,
+            int repeat) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   std::vector<double> times;
@@ -125,7 +134,7 @@ Row measure(Run& run, int size, MPI_Comm comm, CompositeAlgorithm algorithm, int
   CompositeStats stats;
   for (int k = 0; k < repeat; ++k) {
     MPI_Barrier(comm);
-    if (run.composite(comm, algorithm, stats) != MPI_SUCCESS) MPI_Abort(comm, 1);
+    if (run.composite(comm, algorithm, rows, stats) != MPI_SUCCESS) MPI_Abort(comm, 1);
     double slowest = stats.seconds;
     MPI_Allreduce(MPI_IN_PLACE, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
     times.push_back(slowest * 1e3);
@@ -142,6 +151,7 @@ Row measure(Run& run, int size, MPI_Comm comm, CompositeAlgorithm algorithm, int
   row.ranks = ranks;
   row.size = size;
   row.algorithm = algorithm_name(algorithm);
+  row.rows = stats.interlaced ? "interlaced" : "natural";
   row.rounds = stats.rounds;
   row.median_ms = median(times);
   row.min_ms = *std::min_element(times.begin(), times.end());
@@ -168,20 +178,22 @@ std::vector<Row> measure_rank_count(int ranks, const BenchOptions& options,
   for (int size : options.sizes) {
     for (Coverage coverage : options.coverages) {
       for (CompositeAlgorithm algorithm : options.algorithms) {
-        const render::PixelRect covered = footprint(coverage, size, rank, ranks);
-        std::optional<render::PixelRect> hint;
-        if (options.hint) hint = covered;
-        if (options.model) {
-          ModelRun run{{size, size, {covered}, &settings}, hint, {}};
-          rows.push_back(measure(run, size, comm, algorithm, options.repeat));
-        } else {
-          const render::Framebuffer image = bench_image(coverage, size, rank, ranks);
-          RealImage run{image, hint, {}, {}};
-          rows.push_back(measure(run, size, comm, algorithm, options.repeat));
-          rows.back().root_image_hash = rank == 0 ? image_hash(run.last) : 0;
+        for (CompositeRows order : options.row_orders) {
+          const render::PixelRect covered = footprint(coverage, size, rank, ranks);
+          std::optional<render::PixelRect> hint;
+          if (options.hint) hint = covered;
+          if (options.model) {
+            ModelRun run{{size, size, {covered}, &settings}, hint, {}};
+            rows.push_back(measure(run, size, comm, algorithm, order, options.repeat));
+          } else {
+            const render::Framebuffer image = bench_image(coverage, size, rank, ranks);
+            RealImage run{image, hint, {}, {}};
+            rows.push_back(measure(run, size, comm, algorithm, order, options.repeat));
+            rows.back().root_image_hash = rank == 0 ? image_hash(run.last) : 0;
+          }
+          rows.back().coverage = coverage_name(coverage);
+          rows.back().model = options.model;
         }
-        rows.back().coverage = coverage_name(coverage);
-        rows.back().model = options.model;
       }
     }
   }
@@ -261,11 +273,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--ranks", options.rank_counts, "rank counts to measure (at most the job's)")
       ->check(CLI::Range(2, 1 << 20));
-  app.add_option("--coverage", options.coverages, "dense, sparse or both")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Coverage>{
-          {"dense", Coverage::dense}, {"sparse", Coverage::sparse}}));
+  app.add_option("--coverage", options.coverages,
+                 "dense, sparse (a cube seen along z), sparse_x (along x); default dense sparse")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Coverage>{{"dense", Coverage::dense},
+                                          {"sparse", Coverage::sparse},
+                                          {"sparse_x", Coverage::sparse_x}}));
   app.add_option("--algorithms", options.algorithms, "automatic, binary_swap, radix_k, gather")
       ->transform(CLI::CheckedTransformer(kAlgorithms));
+  app.add_option("--rows", options.row_orders,
+                 "row orders of the schedule: automatic (default), natural, interlaced")
+      ->transform(CLI::CheckedTransformer(kRowOrders));
   app.add_option("--repeat", options.repeat, "runs per measurement (median reported)")
       ->check(CLI::Range(1, 1000));
   app.add_flag("--model", options.model,

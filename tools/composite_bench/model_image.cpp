@@ -73,25 +73,38 @@ void inject_compute(double seconds) {
 #endif
 }
 
-std::uint64_t pixels_in(render::PixelSpan span, render::PixelRect rect, int width) {
-  if (empty_input(span, rect, width)) return 0;
+SpanCover span_cover(render::PixelSpan span, render::PixelRect rect, int width,
+                     const render::RowOrder& order) {
+  SpanCover cover;
+  if (empty_input(span, rect, width)) return cover;
   const SpanRows rows = rows_of(span, width);
-  const auto [y0, y1] = reached_rows(rows, rect);
-  if (y0 > y1) return 0;
-  if (y0 == y1) return static_cast<std::uint64_t>(row_pixels(rows, rect, y0));
-  const auto inner = static_cast<std::uint64_t>(y1 - y0 - 1) * (rect.x1 - rect.x0);
-  return inner +
-         static_cast<std::uint64_t>(row_pixels(rows, rect, y0) + row_pixels(rows, rect, y1));
-}
-
-std::uint64_t rows_in(render::PixelSpan span, render::PixelRect rect, int width) {
-  if (empty_input(span, rect, width)) return 0;
-  const SpanRows rows = rows_of(span, width);
-  const auto [y0, y1] = reached_rows(rows, rect);
-  if (y0 > y1) return 0;
-  const auto reached = [&](int y) -> std::uint64_t { return row_pixels(rows, rect, y) > 0; };
-  if (y0 == y1) return reached(y0);
-  return static_cast<std::uint64_t>(y1 - y0 - 1) + reached(y0) + reached(y1);
+  if (order.natural()) {
+    const auto [y0, y1] = reached_rows(rows, rect);
+    if (y0 > y1) return cover;
+    cover.rect = {rect.x0, y0, rect.x1, y1 + 1};
+    const auto first = static_cast<std::uint64_t>(row_pixels(rows, rect, y0));
+    if (y0 == y1) {
+      cover.pixels = first;
+      cover.rows = first > 0;
+      return cover;
+    }
+    const auto last = static_cast<std::uint64_t>(row_pixels(rows, rect, y1));
+    const auto inner = static_cast<std::uint64_t>(y1 - y0 - 1);
+    cover.pixels = inner * static_cast<std::uint64_t>(rect.x1 - rect.x0) + first + last;
+    cover.rows = inner + (first > 0) + (last > 0);
+    return cover;
+  }
+  // Interlaced: each schedule row of the span is one image row, wherever it lies.
+  for (int v = rows.first_row; v <= rows.last_row; ++v) {
+    const auto j = static_cast<int>(order.image_row(static_cast<std::uint32_t>(v)));
+    if (j < rect.y0 || j >= rect.y1) continue;
+    const int pixels = row_pixels(rows, rect, v);
+    if (pixels <= 0) continue;
+    cover.pixels += static_cast<std::uint64_t>(pixels);
+    ++cover.rows;
+    cover.rect = render::united(cover.rect, {rect.x0, j, rect.x1, j + 1});
+  }
+  return cover;
 }
 
 ModelMessage::ModelMessage(std::unique_ptr<ModelPiece> piece, int byte_scale)
@@ -119,8 +132,7 @@ std::uint64_t message_bytes(const ModelMessage& message) {
 }
 
 std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span) {
-  return scaled_words(render::kPieceHeaderWords + render::kRunHeaderWords +
-                          render::kPixelWords * std::uint64_t{span.size()},
+  return scaled_words(render::piece_capacity(static_cast<std::uint32_t>(image.width), span),
                       image.settings->byte_scale);
 }
 
@@ -140,21 +152,20 @@ render::PixelRect active_rect(const ModelImage& image, render::PixelRect within)
   return rect;
 }
 
-ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span,
-                            render::PixelRect hint) {
+ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint,
+                            const render::RowOrder& order) {
   auto piece = std::make_unique<ModelPiece>();
   std::uint64_t runs = 0;
   render::PixelRect sent_rect;
-  const SpanRows rows = rows_of(span, image.width);
   for (const render::PixelRect& footprint : image.footprints) {
-    const std::uint64_t pixels = pixels_in(span, footprint, image.width);
-    if (pixels == 0) continue;
+    const SpanCover cover = span_cover(span, footprint, image.width, order);
+    if (cover.pixels == 0) continue;
     piece->footprints.push_back(footprint);
-    piece->pixels += pixels;
-    // A footprint as wide as the image is one run; the encoder joins its rows.
-    runs += footprint.x1 - footprint.x0 == image.width ? 1 : rows_in(span, footprint, image.width);
-    const auto [y0, y1] = reached_rows(rows, footprint);
-    sent_rect = render::united(sent_rect, {footprint.x0, y0, footprint.x1, y1 + 1});
+    piece->pixels += cover.pixels;
+    // A footprint as wide as the image is one run in natural order: the encoder joins its rows.
+    const bool joined = order.natural() && footprint.x1 - footprint.x0 == image.width;
+    runs += joined ? 1 : cover.rows;
+    sent_rect = render::united(sent_rect, cover.rect);
   }
   piece->rect = sent_rect;
   // Runs of neighbouring footprints in one row are joined by the encoder and counted apart
@@ -165,9 +176,11 @@ ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span,
                               render::kPieceHeaderWords + render::kRunHeaderWords +
                                   render::kPixelWords * std::uint64_t{span.size()});
   const PixelCosts& costs = image.settings->costs;
-  const std::uint64_t scanned = pixels_in(span, hint, image.width);
-  // One run goes from the image itself: its pixels are scanned, not copied.
-  const double encode = runs == 1 ? costs.scan : costs.encode;
+  const std::uint64_t scanned = span_cover(span, hint, image.width, order).pixels;
+  // One run, or interlaced every pixel of the span, goes from the image itself: its pixels are
+  // scanned, not copied (outgoing_piece).
+  const bool in_place = runs == 1 || (!order.natural() && piece->pixels == span.size());
+  const double encode = in_place ? costs.scan : costs.encode;
   inject_compute(static_cast<double>(scanned - std::min(scanned, piece->pixels)) * costs.scan +
                  static_cast<double>(piece->pixels) * encode);
   return ModelMessage(std::move(piece), image.settings->byte_scale);
@@ -191,7 +204,7 @@ int isend_piece_parts(ModelMessage& message, int peer, int tag, MPI_Comm comm,
 
 int post_piece_body(ModelImage& image, render::PixelSpan span, render::ReceiveBuffer& buffer,
                     std::size_t header_words, int peer, int tag, MPI_Comm comm,
-                    MPI_Request* request, render::PartsArrival& arrival) {
+                    MPI_Request* request, render::PartsArrival& arrival, const render::RowOrder&) {
   if (header_words != kAddressWords) return MPI_ERR_OTHER;
   const ModelPiece& piece = peek_piece({buffer.words.get(), header_words});
   arrival.header_words = header_words;
@@ -205,14 +218,15 @@ int post_piece_body(ModelImage& image, render::PixelSpan span, render::ReceiveBu
 std::optional<render::PixelRect> take_piece_body(ModelImage& image, render::PixelSpan,
                                                  const render::ReceiveBuffer& buffer,
                                                  render::PartsArrival& arrival,
-                                                 std::size_t body_words) {
+                                                 std::size_t body_words, const render::RowOrder&) {
   if (body_words != arrival.body_words) return std::nullopt;
   return take_in(image, {buffer.words.get(), arrival.header_words + arrival.body_words},
                  arrival.in_place ? 0.0 : image.settings->costs.copy);
 }
 
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
-                                                 std::span<const std::uint32_t> message) {
+                                                 std::span<const std::uint32_t> message,
+                                                 const render::RowOrder&) {
   return take_in(image, message, image.settings->costs.composite);
 }
 

@@ -14,8 +14,9 @@
 // cost measured on this machine (`PixelCosts`), as simulated time on the rank's host. Scanned
 // pixels cost `scan`, active pixels written into a message `encode` (the copying encoder's cost,
 // whose scanning is part of it), received ones `composite`, or `copy` in the assembly. A piece
-// whose active pixels are one run is sent from the image without the copies, as the real
-// compositor sends it (outgoing_piece): its pixels cost only their scan.
+// whose active pixels are one run, or interlaced every pixel of its span, is sent from the image
+// without the copies, as the real compositor sends it (outgoing_piece): its pixels cost only
+// their scan; an assembly piece holding every pixel of its span lands in the image uncopied.
 #pragma once
 
 #include <mpi.h>
@@ -89,8 +90,8 @@ render::PixelRect active_rect(const ModelImage& image, render::PixelRect within)
 inline render::PixelRect image_rect(const ModelImage& image) {
   return {0, 0, image.width, image.height};
 }
-ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span,
-                            render::PixelRect hint);
+ModelMessage outgoing_piece(const ModelImage& image, render::PixelSpan span, render::PixelRect hint,
+                            const render::RowOrder& order);
 int isend_piece(ModelMessage& message, int peer, int tag, MPI_Comm comm, MPI_Request* request);
 // The assembly's two parts: the piece's address as the header, the rest of its scaled size as
 // the body. A piece that is its whole span is taken in without the copy's cost, as the real
@@ -99,20 +100,29 @@ int isend_piece_parts(ModelMessage& message, int peer, int tag, MPI_Comm comm,
                       MPI_Request requests[2]);
 int post_piece_body(ModelImage& image, render::PixelSpan span, render::ReceiveBuffer& buffer,
                     std::size_t header_words, int peer, int tag, MPI_Comm comm,
-                    MPI_Request* request, render::PartsArrival& arrival);
+                    MPI_Request* request, render::PartsArrival& arrival,
+                    const render::RowOrder& order);
 std::optional<render::PixelRect> take_piece_body(ModelImage& image, render::PixelSpan span,
                                                  const render::ReceiveBuffer& buffer,
                                                  render::PartsArrival& arrival,
-                                                 std::size_t body_words);
+                                                 std::size_t body_words,
+                                                 const render::RowOrder& order);
 std::optional<render::PixelRect> composite_piece(ModelImage& image,
-                                                 std::span<const std::uint32_t> message);
+                                                 std::span<const std::uint32_t> message,
+                                                 const render::RowOrder& order);
 std::uint64_t message_bytes(const ModelMessage& message);
 std::size_t piece_capacity(const ModelImage& image, render::PixelSpan span);
 std::uint64_t piece_bytes(const ModelImage& image, std::span<const std::uint32_t> piece);
 
-// Pixels of `rect` whose linear index (row-major, `width` per row) lies in `span`.
-std::uint64_t pixels_in(render::PixelSpan span, render::PixelRect rect, int width);
-// Rows of `rect` with at least one such pixel.
-std::uint64_t rows_in(render::PixelSpan span, render::PixelRect rect, int width);
+// What of `rect` (image coordinates) a span of schedule indices (row-major, `width` per row,
+// rows in `order`) holds: its pixels, the rows with at least one of them, and the rectangle of
+// those rows.
+struct SpanCover {
+  std::uint64_t pixels = 0;
+  std::uint64_t rows = 0;
+  render::PixelRect rect;
+};
+SpanCover span_cover(render::PixelSpan span, render::PixelRect rect, int width,
+                     const render::RowOrder& order = {});
 
 }  // namespace tetray::composite_bench

@@ -1,12 +1,15 @@
 // The compositor against the brute-force reference (gather everything, nearest per pixel, ties
 // to the smaller key, spelled apart from the library's wins_over), for every algorithm, at
-// whatever rank count mpirun gives (ctest runs 1, 2, 3, 4, 5 and 8).
+// whatever rank count mpirun gives (ctest runs 1, 2, 3, 4, 5, 8 and 16), each in both row orders
+// of the schedule (CompositeRows).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "composite_test_images.hpp"
@@ -71,14 +74,21 @@ std::uint64_t pixels_sent(const CompositePlan& plan, int v, std::size_t image_pi
   return sent;
 }
 
-class CompositeMpi : public ::testing::TestWithParam<CompositeAlgorithm> {
+class CompositeMpi
+    : public ::testing::TestWithParam<std::tuple<CompositeAlgorithm, CompositeRows>> {
  protected:
+  static CompositeAlgorithm algorithm() { return std::get<0>(GetParam()); }
+  static bool interlaced() { return std::get<1>(GetParam()) == CompositeRows::interlaced; }
+  static CompositeOptions options(int root, std::optional<PixelRect> hint = {}) {
+    return {algorithm(), root, hint, std::get<1>(GetParam())};
+  }
+
   // Composites `image` on `root` and checks it against the reference there.
   CompositeStats composite_and_check(Framebuffer image, int root, const std::string& what) {
     const Framebuffer expected = brute_force_composite(image, MPI_COMM_WORLD, root);
     CompositeStats stats;
-    EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), root, {}}, &stats), MPI_SUCCESS)
-        << what;
+    EXPECT_EQ(composite(image, MPI_COMM_WORLD, options(root), &stats), MPI_SUCCESS) << what;
+    EXPECT_EQ(stats.interlaced, interlaced() && world().size > 1) << what;
     if (world().rank == root) {
       EXPECT_EQ(count_differences(image, expected), 0u) << what;
     }
@@ -104,13 +114,13 @@ TEST_P(CompositeMpi, AllRanksEmptyGiveTheBackground) {
   const World w = world();
   Framebuffer image(64, 48);
   CompositeStats stats;
-  EXPECT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0, {}}, &stats), MPI_SUCCESS);
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, options(0), &stats), MPI_SUCCESS);
   if (w.rank == 0) {
     EXPECT_EQ(count_differences(image, Framebuffer(64, 48)), 0u);
   }
   // Empty pieces cost their headers only.
   EXPECT_EQ(stats.bytes_sent % kHeaderBytes, 0u);
-  EXPECT_LE(stats.bytes_sent, kHeaderBytes * max_messages_sent(make_plan(w.size, GetParam())));
+  EXPECT_LE(stats.bytes_sent, kHeaderBytes * max_messages_sent(make_plan(w.size, algorithm())));
 }
 
 TEST_P(CompositeMpi, AHintHoldingTheActivePixelsGivesTheSameImageAndBytes) {
@@ -123,8 +133,8 @@ TEST_P(CompositeMpi, AHintHoldingTheActivePixelsGivesTheSameImageAndBytes) {
   // and for an empty rank an empty one.
   PixelRect hint = active_rect(image);
   if (!hint.empty()) hint = {hint.x0 - 3, hint.y0 - 3, hint.x1 + 3, hint.y1 + 3};
-  ASSERT_EQ(composite(plain, MPI_COMM_WORLD, {GetParam(), 0, {}}, &plain_stats), MPI_SUCCESS);
-  ASSERT_EQ(composite(hinted, MPI_COMM_WORLD, {GetParam(), 0, hint}, &hinted_stats), MPI_SUCCESS);
+  ASSERT_EQ(composite(plain, MPI_COMM_WORLD, options(0), &plain_stats), MPI_SUCCESS);
+  ASSERT_EQ(composite(hinted, MPI_COMM_WORLD, options(0, hint), &hinted_stats), MPI_SUCCESS);
   if (w.rank == 0) {
     EXPECT_EQ(count_differences(hinted, expected), 0u);
   }
@@ -180,11 +190,13 @@ TEST_P(CompositeMpi, DenseImagesSendWhatTheScheduleSays) {
   const World w = world();
   const Framebuffer image = random_image(257, 131, 3, w.rank, w.size, Coverage::full);
   const CompositeStats stats = composite_and_check(image, 0, "dense");
-  const CompositePlan plan = make_plan(w.size, GetParam());
+  const CompositePlan plan = make_plan(w.size, algorithm());
   const std::uint64_t pixels = pixels_sent(plan, w.rank, image.pixel_count());
   const std::uint64_t messages = max_messages_sent(plan);
+  // A piece is one run in natural order; interlaced, one run per row it reaches.
+  const std::uint64_t runs = interlaced() ? static_cast<std::uint64_t>(image.height) + 1 : 1;
   EXPECT_GE(stats.bytes_sent, pixels * kPixelBytes + (w.rank != 0 ? kHeaderBytes + kRunBytes : 0));
-  EXPECT_LE(stats.bytes_sent, pixels * kPixelBytes + messages * (kHeaderBytes + kRunBytes));
+  EXPECT_LE(stats.bytes_sent, pixels * kPixelBytes + messages * (kHeaderBytes + runs * kRunBytes));
   // The root's peak holds at least the largest piece it receives: the other half of the image
   // in the last assembly step of binary swap.
   EXPECT_GE(stats.peak_message_bytes, w.rank == 0 && w.size > 1 ? kPixelBytes : 0);
@@ -197,25 +209,69 @@ TEST_P(CompositeMpi, ReportsTheRoundsOfItsPlan) {
   const World w = world();
   Framebuffer image = random_image(64, 48, 1, w.rank, w.size, Coverage::full);
   CompositeStats stats;
-  ASSERT_EQ(composite(image, MPI_COMM_WORLD, {GetParam(), 0, {}}, &stats), MPI_SUCCESS);
-  EXPECT_EQ(stats.rounds, w.size == 1 ? 0 : make_plan(w.size, GetParam()).round_count());
+  ASSERT_EQ(composite(image, MPI_COMM_WORLD, options(0), &stats), MPI_SUCCESS);
+  EXPECT_EQ(stats.rounds, w.size == 1 ? 0 : make_plan(w.size, algorithm()).round_count());
   EXPECT_GE(stats.seconds, 0.0);
 }
 
-std::string algorithm_name(const ::testing::TestParamInfo<CompositeAlgorithm>& info) {
-  constexpr const char* kNames[] = {"automatic", "binary_swap", "radix_k", "gather"};
-  return kNames[static_cast<int>(info.param)];
+std::string schedule_name(
+    const ::testing::TestParamInfo<std::tuple<CompositeAlgorithm, CompositeRows>>& info) {
+  constexpr const char* kAlgorithms[] = {"automatic", "binary_swap", "radix_k", "gather"};
+  constexpr const char* kRows[] = {"automatic", "natural", "interlaced"};
+  return std::string(kAlgorithms[static_cast<int>(std::get<0>(info.param))]) + "_" +
+         kRows[static_cast<int>(std::get<1>(info.param))];
 }
 
-INSTANTIATE_TEST_SUITE_P(Algorithms, CompositeMpi,
-                         ::testing::Values(CompositeAlgorithm::automatic,
-                                           CompositeAlgorithm::binary_swap,
-                                           CompositeAlgorithm::radix_k, CompositeAlgorithm::gather),
-                         algorithm_name);
+INSTANTIATE_TEST_SUITE_P(
+    Schedules, CompositeMpi,
+    ::testing::Combine(::testing::Values(CompositeAlgorithm::automatic,
+                                         CompositeAlgorithm::binary_swap,
+                                         CompositeAlgorithm::radix_k, CompositeAlgorithm::gather),
+                       ::testing::Values(CompositeRows::natural, CompositeRows::interlaced)),
+    schedule_name);
+
+// CompositeRows::automatic: interlaced when every rank's active rows span at most a quarter of
+// the image's height, natural as soon as one rank's span more; the same image either way.
+TEST(CompositeRowsAutomatic, InterlacesWhenEveryRankCoversAShortBand) {
+  const World w = world();
+  constexpr int kWidth = 40, kHeight = 64;
+  for (const int tallest : {kHeight / 4, kHeight / 4 + 1}) {
+    Framebuffer image(kWidth, kHeight);
+    // Rank r's band starts at row 3 r; the last rank's is `tallest` rows, the others' 5.
+    const int y0 = (3 * w.rank) % (kHeight - tallest);
+    const int rows = w.rank == w.size - 1 ? tallest : 5;
+    for (int j = y0; j < y0 + rows; ++j) {
+      for (int i = w.rank % 7; i < kWidth; i += 2) {
+        const std::size_t p = image.index(i, j);
+        image.depth[p] = 1.0f + 0.125f * static_cast<float>((i * 3 + j + w.rank) % 11);
+        image.hit[p] = static_cast<std::uint32_t>(p * 64 + static_cast<std::size_t>(w.rank));
+        for (int c = 0; c < 4; ++c) image.rgba[4 * p + c] = 0.05f * static_cast<float>(c + j);
+      }
+    }
+    const Framebuffer expected = brute_force_composite(image, MPI_COMM_WORLD, 0);
+    CompositeStats stats;
+    ASSERT_EQ(composite(image, MPI_COMM_WORLD, {}, &stats), MPI_SUCCESS);
+    EXPECT_EQ(stats.interlaced, w.size > 1 && tallest <= kHeight / 4) << "tallest " << tallest;
+    if (w.rank == 0) {
+      EXPECT_EQ(count_differences(image, expected), 0u) << "tallest " << tallest;
+    }
+  }
+}
+
+// Ranks that ask for different row orders are refused on every rank, as different algorithms.
+TEST(CompositeErrorsOnTwoRanks, DifferentRowOrdersFailOnEveryRank) {
+  const World w = world();
+  ASSERT_GE(w.size, 2) << "needs two ranks";
+  Framebuffer image = random_image(32, 16, 1, w.rank, w.size, Coverage::full);
+  CompositeOptions options;
+  options.rows = w.rank == 0 ? CompositeRows::interlaced : CompositeRows::natural;
+  EXPECT_EQ(composite(image, MPI_COMM_WORLD, options), MPI_ERR_ARG);
+}
 
 // A piece sent from the image in place (its active pixels one run) and one sent as copied words
 // arrive, through MPI, as the words the encoder writes for the same span; only the one-run piece
-// goes in place. On each rank, to itself.
+// goes in place, and interlaced one that holds every pixel of its span (a run per row, each
+// another image row's). On each rank, to itself.
 TEST(OutgoingPiece, ArrivesAsTheEncodedWordsInPlaceOrCopied) {
   Framebuffer image(37, 40);
   for (std::size_t p = 0; p < image.pixel_count(); ++p) {
@@ -224,16 +280,27 @@ TEST(OutgoingPiece, ArrivesAsTheEncodedWordsInPlaceOrCopied) {
     image.depth[p] = 1.0f + static_cast<float>(p);
     image.hit[p] = static_cast<std::uint32_t>(3 * p);
   }
-  const PixelSpan one_run{30, 1300};
   Framebuffer holes = image;  // the same with a background pixel in every row: a run per row
   for (int j = 0; j < holes.height; ++j) {
     holes.depth[holes.index(5, j)] = std::numeric_limits<float>::infinity();
     holes.hit[holes.index(5, j)] = kNoHit;
   }
-  for (const Framebuffer* source : {&image, &holes}) {
-    OutgoingPiece piece = outgoing_piece(*source, one_run, active_rect(*source));
-    EXPECT_EQ(piece.in_place(), source == &image);
-    const PieceMessage expected = encode_piece(*source, one_run, active_rect(*source));
+  const std::vector<std::uint32_t> rows = interlaced_rows(image.height);
+  const PixelSpan across_rows{30, 1300}, in_row{40, 70};
+  struct Case {
+    const Framebuffer* source;
+    PixelSpan span;
+    RowOrder order;
+    bool in_place;
+  };
+  const Case cases[] = {{&image, across_rows, {}, true},     {&holes, across_rows, {}, false},
+                        {&image, across_rows, {rows}, true}, {&holes, across_rows, {rows}, false},
+                        {&image, in_row, {rows}, true},      {&holes, in_row, {rows}, false}};
+  for (const Case& c : cases) {
+    const Framebuffer* source = c.source;
+    OutgoingPiece piece = outgoing_piece(*source, c.span, active_rect(*source), c.order);
+    EXPECT_EQ(piece.in_place(), c.in_place);
+    const PieceMessage expected = encode_piece(*source, c.span, active_rect(*source), c.order);
     EXPECT_EQ(message_bytes(piece), expected.size() * sizeof(std::uint32_t));
     std::vector<std::uint32_t> received(expected.size() + 8, 0xdeadbeef);
     MPI_Request requests[2];

@@ -1,6 +1,8 @@
 // Spans, the activity scans and active rectangles against direct definitions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -26,6 +28,31 @@ TEST(SplitSpan, PartsTileTheSpanInOrderWithSizesDifferingByAtMostOne) {
       EXPECT_EQ(expected_begin, span.end);
     }
   }
+}
+
+// Every row once; in bit-reversed order for a power of two, so that each aligned run of 2^k
+// schedule rows holds one row of each of the image's 2^k bands; any height keeps its rows in
+// the order of their reversed numbers.
+TEST(InterlacedRows, TakeEveryRowOnceInTheOrderOfTheirReversedBits) {
+  for (int height = 1; height <= 70; ++height) {
+    const std::vector<std::uint32_t> rows = interlaced_rows(height);
+    ASSERT_EQ(rows.size(), static_cast<std::size_t>(height));
+    std::vector<std::uint32_t> sorted = rows;
+    std::sort(sorted.begin(), sorted.end());
+    for (int j = 0; j < height; ++j) EXPECT_EQ(sorted[static_cast<std::size_t>(j)], j);
+  }
+  const std::vector<std::uint32_t> rows = interlaced_rows(64);
+  for (const int bands : {2, 4, 8, 16}) {
+    const int band = 64 / bands;
+    for (int first = 0; first < 64; first += bands) {
+      std::vector<int> per_band(static_cast<std::size_t>(bands), 0);
+      for (int v = first; v < first + bands; ++v)
+        ++per_band[rows[static_cast<std::size_t>(v)] / band];
+      for (int count : per_band) EXPECT_EQ(count, 1) << bands << " bands from row " << first;
+    }
+  }
+  EXPECT_EQ(interlaced_rows(6), (std::vector<std::uint32_t>{0, 4, 2, 1, 5, 3}));
+  EXPECT_TRUE(interlaced_rows(0).empty());
 }
 
 TEST(ActiveRect, IsTheTightBoundOfActivePixels) {

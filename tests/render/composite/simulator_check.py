@@ -2,7 +2,7 @@
 """The compositor under SimGrid's SMPI against real processes (docs/scaling.md).
 
 Builds the simulator's configuration (-DTETRAY_SMPI=ON, smpicxx) from SOURCE into BUILD, then at
-RANKS ranks, every algorithm, dense and sparse images of two sizes (one odd):
+RANKS ranks, every algorithm, both row orders, dense and sparse images of two sizes (one odd):
 - the simulator on real images and real mpirun composite the same image on the root (the hash
   of its every pixel), so the simulator runs the real code;
 - the simulator's model images (where the pixels are, no pixels) send and receive the bytes the
@@ -24,7 +24,8 @@ def run(command, **kwargs):
 
 
 def runs(path):
-    return {(r["size"], r["mode"], r["algorithm"]): r for r in json.load(open(path))["runs"]}
+    return {(r["size"], r["mode"], r["algorithm"], r["rows"]): r
+            for r in json.load(open(path))["runs"]}
 
 
 def main():
@@ -41,7 +42,8 @@ def main():
     settings = [f"--cfg={line.strip()}" for line in open(os.path.join(platforms, "this_machine.cfg"))
                 if line.strip() and not line.startswith("#")]
     options = ["--sizes", "96", "131", "--ranks", ranks, "--repeat", "1", "--algorithms",
-               "binary_swap", "radix_k", "gather", "automatic", "--cost-size", "64"]
+               "binary_swap", "radix_k", "gather", "automatic", "--rows", "natural", "interlaced",
+               "--cost-size", "64"]
     smpirun = ["smpirun", "-no-privatize", "-np", ranks, "-hostfile", hosts, "-platform",
                os.path.join(platforms, "this_machine.xml"), "--cfg=smpi/host-speed:1Gf",
                "--cfg=smpi/send-is-detached-thresh:0"] + settings
