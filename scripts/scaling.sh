@@ -172,6 +172,12 @@ bluegene() {
   local costs_ns
   costs_ns=$(costs)
   for ranks in 1024 4096 8192 16384 32768; do
+    local maps=$((2 * ranks + 10000))
+    if ((maps > $(cat /proc/sys/vm/max_map_count))); then
+      echo "bluegene_p $ranks ranks: not run: needs vm.max_map_count of $maps or more" \
+        "(sysctl -w vm.max_map_count=262144)" >&2
+      continue
+    fi
     local rows=(interlaced)
     ((ranks <= 8192)) && rows+=(natural)
     TETRAY_SCALING_MAPPING=zorder simulate bluegene_p "$ranks" \

@@ -49,7 +49,7 @@ PixelSpan split_span(PixelSpan span, int parts, int part);
 // any run of consecutive schedule rows samples the whole image evenly. A rank whose hits cover
 // a small part of the screen then has about as many pixels in every part a group splits its
 // span into, instead of all of them in one part (IceT's interlaced images, Moreland et al.,
-// LDAV 2011). A run of a piece stays in one schedule row there, so that its pixels are
+// SC 2011). A run of a piece stays in one schedule row there, so that its pixels are
 // consecutive in the image.
 struct RowOrder {
   std::span<const std::uint32_t> rows;  // image row of each schedule row; empty: natural order
