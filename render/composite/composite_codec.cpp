@@ -130,10 +130,10 @@ void copy_pixels_out(const Framebuffer& image, std::size_t at, std::size_t count
   std::memcpy(out + 5 * count, image.hit.data() + at, count * sizeof(std::uint32_t));
 }
 
-// The whole message of `runs` (scan_runs): each run's header, then its pixels as three arrays.
-PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs,
-                         const RowOrder& order) {
-  const auto width = static_cast<std::uint32_t>(image.width);
+// The whole message of `runs` (scan_runs): each run's header, then its pixels as three arrays,
+// copied from image index image_at(r, position) for run r at schedule index `position`.
+template <typename ImageAt>
+PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs, ImageAt&& image_at) {
   const std::size_t run_count = runs[1], pixels = runs[2];
   PieceMessage words;
   words.resize(kPieceHeaderWords + kRunHeaderWords * run_count + kPixelWords * pixels);
@@ -145,12 +145,19 @@ PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs,
     position += skip;
     words[at] = skip;
     words[at + 1] = count;
-    copy_pixels_out(image, order.image_index(position, width), count,
-                    words.data() + at + kRunHeaderWords);
+    copy_pixels_out(image, image_at(r, position), count, words.data() + at + kRunHeaderWords);
     at += kRunHeaderWords + kPixelWords * count;
     position += count;
   }
   return words;
+}
+
+PieceMessage with_pixels(const Framebuffer& image, const PieceMessage& runs,
+                         const RowOrder& order) {
+  const auto width = static_cast<std::uint32_t>(image.width);
+  return with_pixels(image, runs, [&](std::size_t, std::size_t position) {
+    return order.image_index(position, width);
+  });
 }
 
 // One run of a checked message: where its pixels go and its three arrays.
@@ -393,18 +400,7 @@ std::size_t OutgoingPiece::wire_words() const {
 
 PieceMessage OutgoingPiece::wire() const {
   if (!in_place()) return words_;
-  PieceMessage words;
-  words.resize(wire_words());
-  std::copy(words_.begin(), words_.begin() + kPieceHeaderWords, words.begin());
-  std::size_t at = kPieceHeaderWords;
-  for (std::size_t k = 0; k < segments_.size(); ++k) {
-    const auto header = words_.begin() + kPieceHeaderWords + kRunHeaderWords * k;
-    std::copy(header, header + kRunHeaderWords, words.begin() + at);
-    at += kRunHeaderWords;
-    copy_pixels_out(*image_, segments_[k].at, segments_[k].count, words.data() + at);
-    at += kPixelWords * segments_[k].count;
-  }
-  return words;
+  return with_pixels(*image_, words_, [&](std::size_t r, std::size_t) { return segments_[r].at; });
 }
 
 int OutgoingPiece::make_run_type(const std::uint32_t* first, const void* base) {
